@@ -1,0 +1,88 @@
+# One command builds the book (`make book`), one tests it (`make test`).
+# Everything runs inside .venv, created from environment.lock (hash-pinned, Python 3.11.7).
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := help
+
+PYTHON_BOOT ?= python3
+VENV        := .venv
+PY          := $(VENV)/bin/python
+UV          := $(VENV)/bin/uv
+STAMP       := $(VENV)/.lock-stamp
+BUILD       := build
+NBS         := $(sort $(wildcard notebooks/*.ipynb))
+NB_NAMES    := $(notdir $(basename $(NBS)))
+MECHLIB_SRC := $(shell find mechlib -name '*.py' 2>/dev/null)
+EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
+export PYTHONHASHSEED := 0
+export MPLBACKEND := Agg
+export PYDEVD_DISABLE_FILE_VALIDATION := 1
+
+.PHONY: help env book test unit notebooks check-records run references lint lock clean
+
+help:
+	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
+	@echo "make test        unit tests + every notebook + reference comparison + book build"
+	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
+	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
+	@echo "make lock        regenerate environment.lock from requirements.in"
+
+# --- environment ------------------------------------------------------------------------------
+env: $(STAMP)
+
+$(STAMP): environment.lock .ci/bootstrap.lock pyproject.toml
+	test -x $(PY) || $(PYTHON_BOOT) -m venv $(VENV)
+	$(PY) -m pip install -q --disable-pip-version-check --require-hashes -r .ci/bootstrap.lock
+	$(UV) pip sync -q --python $(PY) environment.lock
+	$(UV) pip install -q --python $(PY) --no-deps --no-build-isolation -e .
+	touch $@
+
+lock:
+	uv pip compile requirements.in --generate-hashes --python-version 3.11.7 -o environment.lock
+
+# --- notebooks --------------------------------------------------------------------------------
+# An executed notebook depends on its source, on mechlib and on the environment: nothing else
+# changes its output, so an unchanged notebook is not re-executed.
+$(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP)
+	@mkdir -p $(BUILD)/executed $(BUILD)/records
+	@echo "executing $<"
+	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(VENV)/bin/papermill -k python3 --cwd notebooks \
+	  --no-progress-bar $< $@.tmp
+	mv $@.tmp $@
+
+notebooks: $(EXECUTED)
+
+book: $(EXECUTED)
+	$(PY) -m mechlib.bookbuild --executed $(BUILD)/executed --book book
+	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet
+	@echo "Book: $(abspath book/_build/html/index.html)"
+
+# --- tests ------------------------------------------------------------------------------------
+unit: $(STAMP)
+	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py
+
+check-records: $(EXECUTED)
+	$(VENV)/bin/pytest -q tests/test_records.py
+
+test: $(STAMP)
+	$(VENV)/bin/ruff check mechlib tests
+	$(MAKE) --no-print-directory unit
+	$(MAKE) --no-print-directory check-records
+	$(MAKE) --no-print-directory book
+	$(PY) -m mechlib.records determinism --records $(BUILD)/records
+
+# --- one notebook with new parameters ---------------------------------------------------------
+run: $(STAMP)
+	@test -n "$(NB)" || { echo "usage: make run NB=<notebook name> ARGS='-p name value ...'"; exit 2; }
+	@test -f notebooks/$(NB).ipynb || { echo "no notebook notebooks/$(NB).ipynb; have: $(NB_NAMES)"; exit 2; }
+	$(PY) -m mechlib.runs --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs -- $(ARGS)
+
+references: $(EXECUTED)
+	$(PY) -m mechlib.records update --records $(BUILD)/records --references tests/references
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check mechlib tests
+	$(VENV)/bin/ruff format --check mechlib tests
+
+clean:
+	rm -rf $(BUILD) book/_build

@@ -1,0 +1,1 @@
+"""mechlib: helper library of the executable reproduction."""

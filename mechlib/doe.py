@@ -1,0 +1,186 @@
+"""Designs of experiments: Plackett–Burman, uniform-design quality, random balanced designs.
+
+Designs are ``(runs, factors)`` arrays in coded units, every level in ``[-1, 1]``
+(Table 1 of the thesis: ±1 N maps to ±1).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pyDOE3
+from scipy.stats import qmc
+
+from mechlib.params import check_int, check_matrix
+
+LEVEL_LIMIT = 1.0
+"""Coded levels must lie in [-LEVEL_LIMIT, LEVEL_LIMIT] (Table 1: ±1 N)."""
+
+
+def check_design(
+    design: object, *, n_factors: int | None = None, two_level: bool = False
+) -> np.ndarray:
+    """Validate a coded design matrix and return it as a float array.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+        Coded factor levels.
+    n_factors : int, optional
+        Required number of columns.
+    two_level : bool
+        If true every entry must be exactly -1 or +1.
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, non-finite entries, levels outside [-1, 1] or not two-level.
+    """
+    arr = check_matrix("design", design, shape=(None, n_factors))
+    if arr.shape[0] < 2:
+        raise ValueError(f"design must have at least 2 runs, got {arr.shape[0]}")
+    if np.any(np.abs(arr) > LEVEL_LIMIT):
+        worst = float(arr.flat[np.argmax(np.abs(arr))])
+        raise ValueError(
+            f"design levels must lie in [-{LEVEL_LIMIT}, {LEVEL_LIMIT}] (coded units), got {worst}"
+        )
+    if two_level and not np.all(np.isin(arr, (-1.0, 1.0))):
+        raise ValueError("design must be two-level: every entry -1 or +1")
+    return arr
+
+
+def plackett_burman(n_runs: int) -> np.ndarray:
+    """Full Plackett–Burman matrix with ``n_runs - 1`` columns, from pyDOE3.
+
+    ``pyDOE3.pbdesign(k)`` sizes the design for ``k`` factors as the next multiple of four
+    *above* ``k`` (so ``pbdesign(6)`` has 8 runs); asking for ``n_runs - 1`` factors gives the
+    saturated design with exactly ``n_runs`` runs.
+
+    Parameters
+    ----------
+    n_runs : int
+        Number of runs, a multiple of 4 from 4 to 48.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_runs, n_runs - 1)
+    """
+    n_runs = check_int("n_runs", n_runs, low=4, high=48)
+    if n_runs % 4:
+        raise ValueError(f"n_runs must be a multiple of 4, got {n_runs}")
+    design = np.asarray(pyDOE3.pbdesign(n_runs - 1), dtype=float)
+    if design.shape != (n_runs, n_runs - 1):  # pragma: no cover - guards a pyDOE3 change
+        raise RuntimeError(f"pyDOE3.pbdesign gave shape {design.shape} for {n_runs} runs")
+    return design
+
+
+def orthogonality(design: object) -> np.ndarray:
+    """Return ``XᵀX / runs`` for a two-level design (identity when columns are orthogonal)."""
+    arr = check_design(design)
+    return arr.T @ arr / arr.shape[0]
+
+
+def match_columns(full: object, target: object) -> dict[str, np.ndarray]:
+    """Find how ``target`` is obtained from ``full`` by row order, column choice and signs.
+
+    Solves ``target = full[rows][:, columns] * signs`` by backtracking over the columns of
+    ``target``, keeping only column choices under which the multiset of partial rows of both
+    matrices still agrees.
+
+    Parameters
+    ----------
+    full : array_like, shape (runs, k)
+        Two-level design to choose from (e.g. :func:`plackett_burman`).
+    target : array_like, shape (runs, m), m <= k
+        Two-level design to explain (e.g. Table 2's design matrix).
+
+    Returns
+    -------
+    dict
+        ``columns`` (m,), ``signs`` (m,), ``rows`` (runs,) with
+        ``target[i] == full[rows[i], columns] * signs``.
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not fit or no such mapping exists.
+    """
+    a = check_design(full, two_level=True)
+    b = check_design(target, two_level=True)
+    if a.shape[0] != b.shape[0] or b.shape[1] > a.shape[1]:
+        raise ValueError(f"cannot map a {b.shape} design into a {a.shape} design")
+
+    def rows_agree(cols: list[int], signs: list[float]) -> bool:
+        left = sorted(map(tuple, a[:, cols] * signs))
+        right = sorted(map(tuple, b[:, : len(cols)]))
+        return left == right
+
+    def search(cols: list[int], signs: list[float]) -> tuple[list[int], list[float]] | None:
+        if len(cols) == b.shape[1]:
+            return cols, signs
+        for c, s in itertools.product(range(a.shape[1]), (1.0, -1.0)):
+            if c not in cols and rows_agree([*cols, c], [*signs, s]):
+                found = search([*cols, c], [*signs, s])
+                if found:
+                    return found
+        return None
+
+    found = search([], [])
+    if found is None:
+        raise ValueError("target is not a signed column subset of full up to row order")
+    cols, signs = np.array(found[0]), np.array(found[1])
+    mapped = a[:, cols] * signs
+    unused = list(range(a.shape[0]))
+    rows = []
+    for row in b:
+        i = next(j for j in unused if np.array_equal(mapped[j], row))
+        unused.remove(i)
+        rows.append(i)
+    return {"columns": cols, "signs": signs, "rows": np.array(rows)}
+
+
+def to_unit_cube(design: object) -> np.ndarray:
+    """Map coded levels in [-1, 1] to the unit cube [0, 1] used by discrepancy measures."""
+    return (check_design(design) + LEVEL_LIMIT) / (2 * LEVEL_LIMIT)
+
+
+def centered_l2_discrepancy(design: object) -> float:
+    """Centred L2 discrepancy (Hickernell 1998) of a coded design, via ``scipy.stats.qmc``.
+
+    The CD2 returned is the squared form that SciPy computes (``method="CD"``).
+    """
+    return float(qmc.discrepancy(to_unit_cube(design), method="CD"))
+
+
+def random_balanced_designs(design: object, n_designs: int, seed: int) -> np.ndarray:
+    """Random designs with the same level counts per column as ``design``.
+
+    Each column of each new design is an independent random permutation of the corresponding
+    column of ``design``: the U-type (balanced) designs among which a uniform design is the
+    most uniform one.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+    n_designs : int
+        How many designs, 1 to 100 000.
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_designs, runs, factors)
+    """
+    base = check_design(design)
+    n_designs = check_int("n_designs", n_designs, low=1, high=100_000)
+    rng = np.random.default_rng(check_int("seed", seed, low=0))
+    idx = rng.random((n_designs, *base.shape)).argsort(axis=1)
+    return np.take_along_axis(np.broadcast_to(base, idx.shape), idx, axis=1)
+
+
+def level_counts(design: object) -> dict[float, np.ndarray]:
+    """Number of runs at each level, per column: ``{level: counts (factors,)}``."""
+    arr = check_design(design)
+    levels = np.unique(np.round(arr, 12))
+    return {float(v): np.sum(np.isclose(arr, v), axis=0) for v in levels}

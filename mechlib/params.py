@@ -1,0 +1,152 @@
+"""Validation of user-facing parameters (mechlib arguments and notebook ``parameters`` cells).
+
+Every check raises ``ValueError`` (or ``TypeError`` for a wrong type) with one message that names
+the parameter, what was given and what is allowed. Nothing is clipped or coerced silently.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from numbers import Integral, Real
+
+import numpy as np
+
+
+def check_int(name: str, value: object, *, low: int | None = None, high: int | None = None) -> int:
+    """Return ``value`` as ``int`` if it is an integer in ``[low, high]``.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : object
+        The value to check; ``bool`` is rejected.
+    low, high : int, optional
+        Inclusive bounds; ``None`` means unbounded.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not an integer.
+    ValueError
+        If ``value`` is outside ``[low, high]``.
+    """
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise TypeError(f"{name} must be an integer{_range_text(low, high)}, got {value!r}")
+    value = int(value)
+    _check_range(name, value, low, high)
+    return value
+
+
+def check_float(
+    name: str,
+    value: object,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_open: bool = False,
+) -> float:
+    """Return ``value`` as ``float`` if it is a finite real number in range.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : object
+        The value to check; ``bool`` is rejected.
+    low, high : float, optional
+        Bounds; ``None`` means unbounded. ``high`` is inclusive.
+    low_open : bool
+        If true the lower bound is exclusive (``value > low``).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number.
+    ValueError
+        If ``value`` is not finite or is out of range.
+    """
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(
+            f"{name} must be a real number{_range_text(low, high, low_open)}, got {value!r}"
+        )
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    too_low = low is not None and (value <= low if low_open else value < low)
+    if too_low or (high is not None and value > high):
+        raise ValueError(f"{name} must be{_range_text(low, high, low_open)}, got {value!r}")
+    return value
+
+
+def check_choice(name: str, value: object, allowed: Iterable[object]) -> object:
+    """Return ``value`` if it is one of ``allowed``.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is not in ``allowed``.
+    """
+    allowed = tuple(allowed)
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {list(allowed)}, got {value!r}")
+    return value
+
+
+def check_matrix(
+    name: str, value: object, *, shape: tuple[int | None, int | None] | None = None
+) -> np.ndarray:
+    """Return ``value`` as a finite 2-D float array, optionally of a given shape.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : array_like
+        The matrix.
+    shape : tuple of (int or None), optional
+        Required shape; ``None`` in a position means any size.
+
+    Raises
+    ------
+    ValueError
+        If the array is not 2-D, has the wrong shape or holds NaN/inf.
+    """
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim != 2:
+        raise ValueError(f"{name} must be a 2-D array, got {arr.ndim}-D with shape {arr.shape}")
+    if shape is not None:
+        for axis, want in enumerate(shape):
+            if want is not None and arr.shape[axis] != want:
+                raise ValueError(f"{name} must have shape {_shape_text(shape)}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must hold only finite numbers (found NaN or inf)")
+    return arr
+
+
+def _shape_text(shape: tuple[int | None, int | None]) -> str:
+    return "(" + ", ".join("any" if s is None else str(s) for s in shape) + ")"
+
+
+def _range_text(low: float | None, high: float | None, low_open: bool = False) -> str:
+    if low is None and high is None:
+        return ""
+    if high is None:
+        return f" {'>' if low_open else '>='} {low}"
+    if low is None:
+        return f" <= {high}"
+    return f" in {'(' if low_open else '['}{low}, {high}]"
+
+
+def _check_range(name: str, value: float, low: float | None, high: float | None) -> None:
+    if (low is not None and value < low) or (high is not None and value > high):
+        raise ValueError(f"{name} must be{_range_text(low, high)}, got {value!r}")

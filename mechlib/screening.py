@@ -1,0 +1,178 @@
+"""Screening analysis of two-level designs: main effects and Lenth's method.
+
+Definitions follow Lenth (1989), "Quick and easy analysis of unreplicated factorials",
+Technometrics 31(4), 469–473, as also implemented by the R package BsMD (``LenthPlot``):
+
+- ``s0 = 1.5 · median |c_j|`` over the ``m`` effects,
+- ``PSE = 1.5 · median { |c_j| : |c_j| < 2.5 s0 }`` (pseudo standard error),
+- ``ME = t(0.975; d) · PSE`` and ``SME = t(γ; d) · PSE`` with ``d = m / 3`` degrees of freedom
+  and ``γ = (1 + 0.95^(1/m)) / 2`` (simultaneous margin of error).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import stats
+
+from mechlib.doe import check_design
+from mechlib.params import check_float, check_int, check_matrix
+
+S0_FACTOR = 1.5
+"""Lenth (1989): consistency factor of the median of |effects| for normal effects."""
+TRIM_FACTOR = 2.5
+"""Lenth (1989): effects larger than 2.5 s0 are treated as active and left out of the PSE."""
+MIN_EFFECTS = 3
+"""Lenth's method needs at least three effects (d = m/3 >= 1 degree of freedom)."""
+
+
+def main_effects(design: object, responses: object) -> np.ndarray:
+    """Main effects of a two-level design: mean response at +1 minus mean at -1.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+        Two-level design with entries ±1 and balanced columns.
+    responses : array_like, shape (runs,) or (runs, outputs)
+
+    Returns
+    -------
+    numpy.ndarray, shape (factors,) or (factors, outputs)
+
+    Raises
+    ------
+    ValueError
+        If the design is not two-level, a column is not balanced, or the run counts differ.
+    """
+    x = check_design(design, two_level=True)
+    y = np.asarray(responses, dtype=float)
+    one_d = y.ndim == 1
+    y = check_matrix("responses", y[:, None] if one_d else y, shape=(x.shape[0], None))
+    plus = (x > 0).sum(axis=0)
+    if np.any(plus * 2 != x.shape[0]):
+        bad = int(np.argmax(plus * 2 != x.shape[0]))
+        raise ValueError(
+            f"design column {bad} is not balanced: {int(plus[bad])} of {x.shape[0]} runs at +1"
+        )
+    effects = x.T @ y / (x.shape[0] / 2)
+    return effects[:, 0] if one_d else effects
+
+
+@dataclass(frozen=True)
+class Lenth:
+    """Result of Lenth's analysis of one response."""
+
+    m: int
+    """number of effects"""
+    median_abs: float
+    """median of |effects| (the thesis's ν)"""
+    s0: float
+    """initial scale estimate 1.5 ν"""
+    pse: float
+    """pseudo standard error"""
+    d: float
+    """degrees of freedom m/3"""
+    gamma: float
+    """quantile used for the simultaneous margin"""
+    me: float
+    """margin of error"""
+    sme: float
+    """simultaneous margin of error"""
+
+    def active(self, effects: np.ndarray, simultaneous: bool = False) -> np.ndarray:
+        """Mask of effects whose magnitude exceeds ME (or SME)."""
+        return np.abs(np.asarray(effects)) > (self.sme if simultaneous else self.me)
+
+
+def lenth(effects: object, alpha: float = 0.05) -> Lenth:
+    """Lenth's pseudo standard error and margins of error for one set of effects.
+
+    Parameters
+    ----------
+    effects : array_like, shape (m,)
+        Effect estimates (contrasts), m >= 3.
+    alpha : float
+        Two-sided level, in (0, 0.5]; 0.05 gives the 0.975 quantile of Lenth (1989).
+
+    Returns
+    -------
+    Lenth
+
+    Raises
+    ------
+    ValueError
+        Fewer than three effects, non-finite effects, or ``alpha`` out of range.
+    """
+    c = np.abs(np.asarray(effects, dtype=float).ravel())
+    check_int("number of effects", c.size, low=MIN_EFFECTS)
+    if not np.all(np.isfinite(c)):
+        raise ValueError("effects must be finite")
+    alpha = check_float("alpha", alpha, low=0.0, high=0.5, low_open=True)
+    m = c.size
+    nu = float(np.median(c))
+    s0 = S0_FACTOR * nu
+    trimmed = c[c < TRIM_FACTOR * s0]
+    pse = S0_FACTOR * float(np.median(trimmed)) if trimmed.size else 0.0
+    d = m / 3.0
+    gamma = (1.0 + (1.0 - alpha) ** (1.0 / m)) / 2.0
+    me = float(stats.t.ppf(1.0 - alpha / 2.0, d)) * pse
+    sme = float(stats.t.ppf(gamma, d)) * pse
+    return Lenth(m=m, median_abs=nu, s0=s0, pse=pse, d=d, gamma=gamma, me=me, sme=sme)
+
+
+def margins_from_scale(scale: float, m: int, alpha: float = 0.05) -> tuple[float, float]:
+    """ME and SME for a given scale estimate and number of effects (no trimming step).
+
+    Used to test hypotheses about how a published margin was computed.
+    """
+    scale = check_float("scale", scale, low=0.0)
+    m = check_int("m", m, low=MIN_EFFECTS)
+    alpha = check_float("alpha", alpha, low=0.0, high=0.5, low_open=True)
+    d = m / 3.0
+    gamma = (1.0 + (1.0 - alpha) ** (1.0 / m)) / 2.0
+    return float(stats.t.ppf(1 - alpha / 2, d)) * scale, float(stats.t.ppf(gamma, d)) * scale
+
+
+def half_normal_points(effects: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Coordinates of a half-normal probability plot.
+
+    Returns
+    -------
+    order : numpy.ndarray
+        Indices of the effects sorted by increasing magnitude.
+    abs_effects : numpy.ndarray
+        Sorted |effects|.
+    quantiles : numpy.ndarray
+        Half-normal quantiles ``Φ⁻¹(0.5 + 0.5 (i - 0.5) / m)``, i = 1..m.
+    """
+    c = np.abs(np.asarray(effects, dtype=float).ravel())
+    check_int("number of effects", c.size, low=1)
+    order = np.argsort(c, kind="stable")
+    m = c.size
+    q = stats.norm.ppf(0.5 + 0.5 * (np.arange(1, m + 1) - 0.5) / m)
+    return order, c[order], q
+
+
+def pareto_order(effects: object) -> np.ndarray:
+    """Indices of effects sorted by decreasing magnitude (ties keep factor order)."""
+    c = np.abs(np.asarray(effects, dtype=float).ravel())
+    return np.argsort(-c, kind="stable")
+
+
+def dominant(effects: object, fraction: float = 0.01) -> np.ndarray:
+    """Mask of effects whose magnitude is at least ``fraction`` of the largest one.
+
+    A magnitude criterion for "mainly affected by", suited to noise-free computer experiments
+    where Lenth's PSE collapses to (numerically) zero and every non-zero contrast is
+    "significant".
+
+    Parameters
+    ----------
+    effects : array_like, shape (m,)
+    fraction : float
+        In (0, 1].
+    """
+    c = np.abs(np.asarray(effects, dtype=float).ravel())
+    fraction = check_float("fraction", fraction, low=0.0, high=1.0, low_open=True)
+    return c >= fraction * c.max() if c.max() > 0 else np.zeros(c.size, dtype=bool)

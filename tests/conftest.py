@@ -1,0 +1,5 @@
+"""Shared test settings."""
+
+import warnings
+
+warnings.filterwarnings("ignore", category=DeprecationWarning)

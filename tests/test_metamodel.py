@@ -1,0 +1,63 @@
+"""Linear, penalized and quadratic meta-models; inverse; error metrics."""
+
+import numpy as np
+import pytest
+
+from mechlib import metamodel
+from mechlib import published as pub
+
+
+def _linear_data(seed: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    x = rng.uniform(-1, 1, (30, 6))
+    s = rng.normal(size=(6, 6)) * np.array([[1], [10], [100], [1e3], [1e4], [1e5]])
+    return x, s, x @ s.T
+
+
+def test_ols_recovers_an_exact_linear_model() -> None:
+    x, s, y = _linear_data()
+    fit = metamodel.fit_linear(x, y)
+    np.testing.assert_allclose(fit["S"], s, rtol=1e-10, atol=1e-9)
+    assert np.abs(fit["residuals"]).max() < 1e-8
+    np.testing.assert_allclose(metamodel.fit_linear(x, y + 2.0, intercept=True)["b0"], 2.0)
+
+
+@pytest.mark.parametrize("method", ["ridge", "lasso"])
+def test_penalized_fits_stay_close_on_noise_free_data(method: str) -> None:
+    x, s, y = _linear_data()
+    fit = metamodel.fit_penalized(x, y, method=method)
+    assert np.abs(fit["S"] - s).max() <= 0.02 * np.abs(s).max()
+
+
+def test_quadratic_features_match_eq6_term_count() -> None:
+    feats, names = metamodel.quadratic_features(np.zeros((3, 6)))
+    assert feats.shape == (3, 1 + 6 + 6 + 15) and names[7] == "t0^2" and names[-1] == "t4*t5"
+
+
+def test_inverse_of_eq8_is_a_true_inverse() -> None:
+    inv = metamodel.inverse(pub.EQ8_ST)
+    assert inv["identity_error"] < 1e-12
+    assert inv["cond_scaled"] < inv["cond"]
+
+
+def test_unit_ratio_detects_a_scale() -> None:
+    p = np.arange(1.0, 7.0).reshape(3, 2)
+    assert metamodel.unit_ratio(1000 * p, p).tolist() == [1000.0, 1000.0]
+
+
+def test_error_metrics_by_hand() -> None:
+    m = metamodel.error_metrics([[2.0], [-4.0], [0.0]], [[2.5], [-4.0], [0.1]])
+    assert m["maxabs"][0] == 0.5 and m["max_rel_pct"][0] == 25.0
+    assert m["rmse"][0] == pytest.approx(np.sqrt((0.25 + 0.01) / 3))
+    assert m["max_range_pct"][0] == pytest.approx(12.5)
+
+
+def test_bad_input() -> None:
+    with pytest.raises(ValueError, match="at least 7 runs"):
+        metamodel.fit_linear(np.zeros((6, 6)), np.zeros((6, 1)), intercept=True)
+    with pytest.raises(ValueError, match=r"responses must have shape \(30, any\)"):
+        metamodel.fit_linear(np.zeros((30, 6)), np.zeros((29, 6)))
+    with pytest.raises(ValueError, match=r"method must be one of \['ridge', 'lasso'\]"):
+        metamodel.fit_penalized(np.zeros((30, 6)), np.zeros((30, 6)), method="elastic")
+    with pytest.raises(ValueError, match="square"):
+        metamodel.inverse(np.zeros((6, 5)))

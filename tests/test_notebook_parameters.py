@@ -1,0 +1,42 @@
+"""A notebook parameter of the wrong type or range stops the run with a clear message."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+from mechlib.records import REPO_ROOT
+
+
+def test_bad_notebook_parameter_fails_with_its_name(tmp_path: Path) -> None:
+    papermill = str(Path(sys.executable).with_name("papermill"))
+    nb = REPO_ROOT / "notebooks" / "published_doe.ipynb"
+    out = tmp_path / "out.ipynb"
+    done = subprocess.run(
+        [
+            papermill,
+            "-k",
+            "python3",
+            "--cwd",
+            str(nb.parent),
+            str(nb),
+            str(out),
+            "-p",
+            "penalty",
+            "elastic-net",
+            "-p",
+            "n_random_designs",
+            "10",
+        ],
+        capture_output=True,
+        text=True,
+        env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},
+        check=False,
+    )
+    assert done.returncode != 0
+    assert (
+        "penalty must be one of ['ridge', 'lasso'], got 'elastic-net'"
+        in done.stderr + out.read_text()
+    )
+    assert not (tmp_path / "published_doe.json").exists()

@@ -1,0 +1,53 @@
+"""Parameter validation and report verdicts."""
+
+import pytest
+
+from mechlib import report
+from mechlib.params import check_choice, check_float, check_int
+
+
+def test_checks_accept_good_values() -> None:
+    assert check_int("n", 3, low=1, high=5) == 3
+    assert check_float("a", 0.5, low=0.0, high=1.0, low_open=True) == 0.5
+    assert check_choice("m", "ridge", ("ridge", "lasso")) == "ridge"
+
+
+@pytest.mark.parametrize(
+    ("call", "exc", "message"),
+    [
+        (
+            lambda: check_int("n_random_designs", 0, low=1, high=100),
+            ValueError,
+            r"n_random_designs must be in \[1, 100\], got 0",
+        ),
+        (lambda: check_int("seed", 1.5, low=0), TypeError, "seed must be an integer >= 0, got 1.5"),
+        (lambda: check_int("seed", True), TypeError, "seed must be an integer"),
+        (
+            lambda: check_float("alpha", 0.0, low=0.0, high=0.5, low_open=True),
+            ValueError,
+            r"alpha must be in \(0.0, 0.5\], got 0.0",
+        ),
+        (lambda: check_float("alpha", "x"), TypeError, "alpha must be a real number"),
+        (lambda: check_float("sigma", float("inf")), ValueError, "sigma must be finite"),
+        (
+            lambda: check_choice("penalty", "l3", ("ridge", "lasso")),
+            ValueError,
+            r"penalty must be one of \['ridge', 'lasso'\], got 'l3'",
+        ),
+    ],
+)
+def test_bad_values_name_the_parameter_and_range(call, exc, message) -> None:
+    with pytest.raises(exc, match=message):
+        call()
+
+
+def test_verdicts_follow_the_numbers() -> None:
+    row = report.compare_row("T", "q", [1.00, 2.00], [1.004, 2.0], resolution=0.005)
+    assert row["verdict"] == "reproduced"
+    row = report.compare_row("T", "q", [1.0], [1.01], resolution=0.005, rtol=0.01)
+    assert row["verdict"] == "within tolerance (1 %)"
+    row = report.compare_row("T", "q", [1.0], [1.2], rtol=0.01, cause="a reason")
+    assert row["verdict"] == "diverges: a reason" and row["max_rel_diff"] == pytest.approx(0.2)
+    with pytest.raises(ValueError, match="a cause must be given"):
+        report.compare_row("T", "q", [1.0], [1.2])
+    assert report.claim_row("T", "c", "e", False)["verdict"] == "claim not supported"

@@ -1,0 +1,60 @@
+"""Every notebook's record against its committed reference (run after the notebooks)."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import pytest
+
+from mechlib.records import REPO_ROOT, compare, load, records_dir
+
+REFERENCES = REPO_ROOT / "tests" / "references"
+NOTEBOOKS = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS)
+def test_record_matches_reference(notebook: str) -> None:
+    record, reference = records_dir() / f"{notebook}.json", REFERENCES / f"{notebook}.json"
+    assert reference.exists(), f"no reference for {notebook}: run `make references` and review it"
+    assert record.exists(), f"{notebook} wrote no record at {record}"
+    problems = compare(load(record), load(reference))
+    assert not problems, "\n".join(problems)
+
+
+def _shift(value: object, rtol: float, atol: float) -> object:
+    """Move every number by ten times its tolerance (and by its own size)."""
+    if isinstance(value, list):
+        return [_shift(v, rtol, atol) for v in value]
+    return value + abs(value) * (1 + 10 * rtol) + 10 * atol
+
+
+def _numbers(value: object) -> list[float]:
+    if isinstance(value, list):
+        return [x for v in value for x in _numbers(v)]
+    return [value] if isinstance(value, float) else []
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS)
+def test_a_wrong_value_fails_the_comparison(notebook: str) -> None:
+    """Perturb each numeric tolerance-bearing value beyond its tolerance: compare must object."""
+    reference = load(REFERENCES / f"{notebook}.json")
+    checked = 0
+    for key, entry in reference["values"].items():
+        flat = _numbers(entry["value"])
+        if not flat or not (any(flat) or entry["atol"] > 0):
+            continue
+        bad = copy.deepcopy(reference)
+        bad["values"][key]["value"] = _shift(entry["value"], entry["rtol"], entry["atol"])
+        problems = compare(bad, reference)
+        assert problems and problems[0].startswith(key), f"perturbing {key} went unnoticed"
+        checked += 1
+    assert checked > 0
+
+
+def test_missing_and_extra_keys_are_reported(tmp_path: Path) -> None:
+    ref = {"values": {"a": {"value": 1.0, "rtol": 0.0, "atol": 0.1}}}
+    assert compare({"values": {}}, ref) == ["a: in the reference but not recorded by this run"]
+    extra = {"values": {"a": {"value": 1.05}, "b": {"value": 2}}}
+    assert compare(extra, ref) == ["b: recorded but not in the reference (run `make references`)"]
+    assert compare({"values": {"a": {"value": 1.2}}}, ref)[0].startswith("a: got")

@@ -1,0 +1,57 @@
+"""The record/compare helpers themselves."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechlib.records import Recorder, compare, load, update_references
+
+
+def test_recorder_roundtrip_and_deterministic_bytes(tmp_path: Path) -> None:
+    def write(folder: Path) -> bytes:
+        rec = Recorder("demo")
+        rec.value("b.matrix", np.arange(4.0).reshape(2, 2), rtol=1e-9)
+        rec.value("a.flag", True)
+        rec.value("a.count", np.int64(3))
+        return rec.save(folder).read_bytes()
+
+    assert write(tmp_path / "one") == write(tmp_path / "two")
+    data = load(tmp_path / "one" / "demo.json")
+    assert data["values"]["b.matrix"]["value"] == [[0.0, 1.0], [2.0, 3.0]]
+    assert data["values"]["a.count"]["value"] == 3
+
+
+def test_tolerances_are_relative_and_absolute() -> None:
+    ref = {"values": {"x": {"value": [100.0, 0.0], "rtol": 1e-3, "atol": 1e-6}}}
+    assert compare({"values": {"x": {"value": [100.09, 5e-7]}}}, ref) == []
+    assert compare({"values": {"x": {"value": [100.2, 0.0]}}}, ref)
+    assert compare({"values": {"x": {"value": [100.0, 2e-6]}}}, ref)
+    assert compare({"values": {"x": {"value": [100.0]}}}, ref)[0].startswith("x: shape")
+
+
+def test_bad_records_are_refused() -> None:
+    rec = Recorder("demo")
+    rec.value("k", 1.0)
+    with pytest.raises(ValueError, match="already recorded"):
+        rec.value("k", 2.0)
+    with pytest.raises(ValueError, match="rtol must be >= 0"):
+        rec.value("j", 1.0, rtol=-1)
+    with pytest.raises(ValueError, match="finite"):
+        rec.value("nan", float("nan"))
+
+
+def test_update_references_reports_changes(tmp_path: Path) -> None:
+    records, refs = tmp_path / "records", tmp_path / "refs"
+    rec = Recorder("nb")
+    rec.value("v", 1.0, rtol=1e-6)
+    rec.save(records)
+    assert update_references(records, refs) == ["nb: new reference"]
+    rec2 = Recorder("nb")
+    rec2.value("v", 2.0, rtol=1e-6)
+    rec2.save(records)
+    lines = update_references(records, refs)
+    assert lines[0].startswith("nb: v: got 2.0") and json.loads((refs / "nb.json").read_text())

@@ -1,0 +1,54 @@
+"""Main effects and Lenth's method on hand-checkable examples."""
+
+import numpy as np
+import pytest
+
+from mechlib import screening
+
+
+def t975_df2() -> float:
+    """Closed form of Student's t quantile for 2 degrees of freedom: (2p-1)/sqrt(2p(1-p))."""
+    p = 0.975
+    return (2 * p - 1) / np.sqrt(2 * p * (1 - p))
+
+
+def test_lenth_by_hand_six_effects() -> None:
+    # |c| sorted: 0.5 1 1 2 3 8 -> median 1.5, s0 2.25, cut 5.625 drops 8,
+    # trimmed median of 0.5 1 1 2 3 is 1 -> PSE 1.5; d = 2.
+    res = screening.lenth([8.0, -1.0, 2.0, 0.5, 1.0, -3.0])
+    assert res.median_abs == 1.5 and res.s0 == 2.25 and res.pse == 1.5 and res.d == 2.0
+    assert res.me == pytest.approx(t975_df2() * 1.5, rel=1e-10)
+    gamma = (1 + 0.95 ** (1 / 6)) / 2
+    t_gamma = (2 * gamma - 1) / np.sqrt(2 * gamma * (1 - gamma))
+    assert res.sme == pytest.approx(t_gamma * 1.5, rel=1e-10)
+    assert res.active(np.array([8.0, -1.0])).tolist() == [True, False]
+
+
+def test_main_effects_of_a_known_linear_response() -> None:
+    x = np.array([[-1, -1], [1, -1], [-1, 1], [1, 1]], dtype=float)
+    y = 5 + 3 * x[:, 0] - 2 * x[:, 1]
+    assert screening.main_effects(x, y).tolist() == [6.0, -4.0]
+
+
+def test_half_normal_and_pareto_ordering() -> None:
+    order, mag, q = screening.half_normal_points([3.0, -1.0, 2.0])
+    assert order.tolist() == [1, 2, 0] and mag.tolist() == [1.0, 2.0, 3.0]
+    assert np.all(np.diff(q) > 0) and q[0] > 0
+    assert screening.pareto_order([3.0, -1.0, 2.0]).tolist() == [0, 2, 1]
+
+
+def test_dominant_effects() -> None:
+    assert screening.dominant([100.0, 0.5, -2.0], 0.01).tolist() == [True, False, True]
+
+
+def test_bad_input_gets_clear_errors() -> None:
+    with pytest.raises(ValueError, match=r"number of effects must be >= 3"):
+        screening.lenth([1.0, 2.0])
+    with pytest.raises(ValueError, match=r"alpha must be in \(0.0, 0.5\]"):
+        screening.lenth([1.0, 2.0, 3.0], alpha=0.7)
+    with pytest.raises(ValueError, match="two-level"):
+        screening.main_effects(np.array([[0.5, 1], [-1, -1]]), [1.0, 2.0])
+    with pytest.raises(ValueError, match="not balanced"):
+        screening.main_effects(np.array([[1.0], [1.0], [-1.0]]), [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"responses must have shape \(3, any\)"):
+        screening.main_effects(np.array([[1.0], [-1.0], [1.0]]), [1.0, 2.0])
