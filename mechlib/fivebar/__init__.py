@@ -1,0 +1,1 @@
+"""Planar 5R symmetrical parallel mechanism: kinematics, identification, posture selection."""

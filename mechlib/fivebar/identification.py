@@ -1,0 +1,235 @@
+"""Kinematic identification of the 5R by inverse calibration (thesis Eqs 16–19, 24–26).
+
+For leg κ and measured end-effector points ``P̂`` and joint readings ``ψ̂``, the residual is
+``ΔQ = ψ̂ − gκ(P̂; φκ)`` and the identification Jacobian is ``Cκ = ∂gκ/∂φκ`` (Eq 17), computed
+analytically by implicit differentiation of the loop equation (Eq 23).
+
+*Divide and conquer* identifies each leg from its own posture set. The *traditional* method
+identifies all twelve parameters from one posture set; because leg κ's reading depends only on
+φκ, its total identification matrix is block diagonal, ``C = diag(C1, C2)`` over shared postures.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from mechlib.fivebar.kinematics import (
+    N_LEG_PARAMS,
+    PARAM_NAMES,
+    active_angle,
+    check_leg,
+    forward,
+    joint_reading,
+)
+from mechlib.params import check_float, check_int
+
+RANK_TOL = 1e-9
+"""Relative singular-value threshold below which a parameter combination is unidentifiable."""
+
+
+def identification_jacobian(points: object, phi: object, mode: int) -> np.ndarray:
+    """Analytic ``C = ∂ψ/∂φ`` of one leg at end-effector points (Eq 17), shape (n, 6).
+
+    With ``u = x − l cos θ − Ax``, ``v = y − l sin θ − Ay`` and ``F = u² + v² − L² = 0``:
+    ``dθ/dp = −F_p / F_θ``, ``F_θ = 2 l (u sin θ − v cos θ)``, ``F_l = −2 (u cos θ + v sin θ)``,
+    ``F_L = −2 L``, ``F_Ax = −2 u``, ``F_Ay = −2 v``; then ``ψ = (θ − γ)/k`` gives
+    ``∂ψ/∂p = (dθ/dp)/k``, ``∂ψ/∂k = −(θ − γ)/k²`` and ``∂ψ/∂γ = −1/k``.
+    """
+    phi = check_leg(phi)
+    p = np.atleast_2d(np.asarray(points, dtype=float))
+    l, L, ax, ay, k, _ = phi
+    theta = active_angle(p, phi, mode)
+    u = p[:, 0] - l * np.cos(theta) - ax
+    v = p[:, 1] - l * np.sin(theta) - ay
+    f_theta = 2 * l * (u * np.sin(theta) - v * np.cos(theta))
+    f_p = np.column_stack(
+        [-2 * (u * np.cos(theta) + v * np.sin(theta)), np.full_like(u, -2 * L), -2 * u, -2 * v]
+    )
+    dtheta = -f_p / f_theta[:, None]
+    psi = joint_reading(p, phi, mode)
+    return np.column_stack([dtheta / k, -psi / k, np.full_like(u, -1.0 / k)])
+
+
+def check_rank(c: object, names: tuple[str, ...] = PARAM_NAMES) -> None:
+    """Raise if ``C`` is rank-deficient, naming the unidentifiable parameter combination."""
+    c = np.asarray(c, dtype=float)
+    if c.shape[0] < c.shape[1]:
+        raise ValueError(f"{c.shape[0]} equations cannot identify {c.shape[1]} parameters")
+    scale = np.linalg.norm(c, axis=0)
+    scale[scale == 0] = 1.0
+    _, s, vt = np.linalg.svd(c / scale, full_matrices=False)
+    if s[-1] <= RANK_TOL * s[0]:
+        v = vt[-1] / scale
+        v = v / np.abs(v).max()
+        combo = " + ".join(f"{w:+.3g}·{n}" for w, n in zip(v, names, strict=True) if abs(w) > 1e-3)
+        raise ValueError(
+            f"the posture set leaves a parameter combination unidentifiable "
+            f"(σ_min/σ_max = {s[-1] / s[0]:.2e}): {combo}"
+        )
+
+
+@dataclass(frozen=True)
+class LegFit:
+    """Result of identifying one leg."""
+
+    phi: np.ndarray
+    iterations: int
+    residual_rms: float
+    converged: bool
+
+
+def identify_leg(
+    points: object, psi: object, phi0: object, mode: int, *, max_iter: int = 50, tol: float = 1e-12
+) -> LegFit:
+    """Iterative linearised least squares of Eqs 24–26 for one leg.
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 2)
+        Measured end-effector points.
+    psi : array_like, shape (N,)
+        Measured joint readings of this leg.
+    phi0 : array_like, shape (6,)
+        Starting (nominal) parameters.
+    mode : {1, -1}
+        Working mode.
+    max_iter : int
+    tol : float
+        Stop when the update's largest component is below ``tol``.
+
+    Raises
+    ------
+    ValueError
+        If the postures make the problem rank-deficient (the combination is named).
+    """
+    phi = check_leg(phi0).copy()
+    p = np.asarray(points, dtype=float)
+    q = np.asarray(psi, dtype=float)
+    max_iter = check_int("max_iter", max_iter, low=1, high=10_000)
+    tol = check_float("tol", tol, low=0.0, low_open=True)
+    check_rank(identification_jacobian(p, phi, mode))
+    iterations = 0
+    for iterations in range(1, max_iter + 1):  # noqa: B007 - the count is reported
+        c = identification_jacobian(p, phi, mode)
+        dq = q - joint_reading(p, phi, mode)
+        dphi = np.linalg.lstsq(c, dq, rcond=None)[0]
+        phi = phi + dphi
+        if np.max(np.abs(dphi)) < tol:
+            break
+    res = q - joint_reading(p, phi, mode)
+    return LegFit(phi, iterations, float(np.sqrt(np.mean(res**2))), bool(np.max(np.abs(dphi)) < tol))
+
+
+def identify_leg_scipy(points: object, psi: object, phi0: object, mode: int) -> np.ndarray:
+    """Cross-check of :func:`identify_leg` with ``scipy.optimize.least_squares`` (TRF)."""
+    p = np.asarray(points, dtype=float)
+    q = np.asarray(psi, dtype=float)
+    fit = least_squares(
+        lambda f: joint_reading(p, f, mode) - q,
+        check_leg(phi0),
+        jac=lambda f: identification_jacobian(p, f, mode),
+        xtol=1e-15,
+        ftol=1e-15,
+        gtol=1e-15,
+    )
+    return fit.x
+
+
+def simulate_measurements(
+    targets: object,
+    phi1_real: object,
+    phi2_real: object,
+    phi1_nom: object,
+    phi2_nom: object,
+    modes: tuple[int, int],
+    sigma: float,
+    rng: np.random.Generator,
+) -> dict[str, np.ndarray]:
+    """Simulated calibration measurements (thesis sec. 3.7 items 8–9).
+
+    The controller commands the nominal inverse kinematics of each target point; the real
+    mechanism moves to the forward kinematics of the *real* parameters; both the end-effector
+    point and the two joint readings are measured with Gaussian noise of standard deviation
+    ``sigma`` (m and rad, as in the thesis).
+    """
+    sigma = check_float("sigma", sigma, low=0.0)
+    t = np.atleast_2d(np.asarray(targets, dtype=float))
+    psi1 = joint_reading(t, phi1_nom, modes[0])
+    psi2 = joint_reading(t, phi2_nom, modes[1])
+    p_real = forward(psi1, psi2, phi1_real, phi2_real)
+    return {
+        "points": p_real + rng.normal(0.0, sigma, p_real.shape),
+        "psi1": psi1 + rng.normal(0.0, sigma, psi1.shape),
+        "psi2": psi2 + rng.normal(0.0, sigma, psi2.shape),
+    }
+
+
+def total_jacobian(
+    points: object, phi1: object, phi2: object, modes: tuple[int, int]
+) -> np.ndarray:
+    """Traditional total identification matrix over shared postures: block diagonal (2N, 12)."""
+    c1 = identification_jacobian(points, phi1, modes[0])
+    c2 = identification_jacobian(points, phi2, modes[1])
+    n = len(c1)
+    c = np.zeros((2 * n, 2 * N_LEG_PARAMS))
+    c[:n, :N_LEG_PARAMS] = c1
+    c[n:, N_LEG_PARAMS:] = c2
+    return c
+
+
+def identify_traditional(
+    points: object,
+    psi1: object,
+    psi2: object,
+    phi1_0: object,
+    phi2_0: object,
+    modes: tuple[int, int],
+    *,
+    max_iter: int = 50,
+    tol: float = 1e-12,
+) -> np.ndarray:
+    """All twelve parameters at once from one shared posture set (Eq 19 on the total matrix).
+
+    Returns the stacked ``[φ1, φ2]``. The Gauss–Newton step solves the full (2N × 12) system; it
+    equals two independent leg solves because the matrix is block diagonal.
+    """
+    phi = np.concatenate([check_leg(phi1_0, "phi1_0"), check_leg(phi2_0, "phi2_0")])
+    p = np.asarray(points, dtype=float)
+    q = np.concatenate([np.asarray(psi1, dtype=float), np.asarray(psi2, dtype=float)])
+    check_rank(
+        total_jacobian(p, phi[:6], phi[6:], modes),
+        tuple(f"{n}{k}" for k in (1, 2) for n in PARAM_NAMES),
+    )
+    for _ in range(check_int("max_iter", max_iter, low=1, high=10_000)):
+        c = total_jacobian(p, phi[:6], phi[6:], modes)
+        pred = np.concatenate(
+            [joint_reading(p, phi[:6], modes[0]), joint_reading(p, phi[6:], modes[1])]
+        )
+        dphi = np.linalg.lstsq(c, q - pred, rcond=None)[0]
+        phi = phi + dphi
+        if np.max(np.abs(dphi)) < tol:
+            break
+    return phi
+
+
+def position_errors(
+    points: object,
+    phi1_model: object,
+    phi2_model: object,
+    phi1_real: object,
+    phi2_real: object,
+    modes: tuple[int, int],
+) -> np.ndarray:
+    """End-effector position error |P_reached − P_target| when commanding with a model.
+
+    The controller computes joint readings by the model's inverse kinematics; the real mechanism
+    reaches the forward kinematics of the real parameters.
+    """
+    t = np.atleast_2d(np.asarray(points, dtype=float))
+    psi1 = joint_reading(t, phi1_model, modes[0])
+    psi2 = joint_reading(t, phi2_model, modes[1])
+    reached = forward(psi1, psi2, phi1_real, phi2_real)
+    return np.hypot(*(reached - t).T)

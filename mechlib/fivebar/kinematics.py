@@ -1,0 +1,284 @@
+"""Kinematics of the planar 5R symmetrical parallel mechanism (thesis sec. 3.7, Figs 10–11).
+
+Leg κ (κ = 1, 2) has the parameter vector of Eq 21, ``φκ = [lκ, Lκ, Aκx, Aκy, kκ, γκ]``: the
+proximal link ``l`` turns about the base point ``A`` by the active angle
+``θ = k ψ + γ`` (Eq 20, ``ψ`` is the joint reading) and the distal link ``L`` joins its elbow
+``B = A + l (cos θ, sin θ)`` to the end-effector point ``P`` (Eq 23: ``|P − B| = L``).
+
+Modes are explicit: the *working mode* ``σκ = ±1`` of a leg picks the elbow side
+(``θ = atan2(P − A) + σ acos(…)``: +1 puts the elbow counter-clockwise of the line A→P);
+the *assembly mode* ``±1`` picks the side of the line B1→B2 on which P lies (+1: to its left).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechlib.params import check_choice, check_float, check_matrix
+
+PARAM_NAMES: tuple[str, ...] = ("l", "L", "Ax", "Ay", "k", "gamma")
+"""Order of a leg's parameters (Eq 21)."""
+N_LEG_PARAMS = len(PARAM_NAMES)
+NOMINAL_MODES: tuple[int, int] = (1, -1)
+"""Working modes of legs 1 and 2 for the thesis's mechanism: both elbows outward (Fig 10)."""
+NOMINAL_ASSEMBLY = 1
+"""End-effector above the elbows (Fig 10)."""
+REACH_TOL = 1e-12
+"""Slack on |cos| <= 1 when testing whether a leg reaches a point."""
+
+
+def leg_vector(values: dict[str, float], leg: int) -> np.ndarray:
+    """Leg parameter vector (Eq 21 order) from a dict keyed like Table 7 (``"A1x"``, ``"k2"``).
+
+    Parameters
+    ----------
+    values : dict
+        Keys ``l{κ}``, ``L{κ}``, ``A{κ}x``, ``A{κ}y``, ``k{κ}``, ``gamma{κ}``.
+    leg : {1, 2}
+    """
+    check_choice("leg", leg, (1, 2))
+    keys = (f"l{leg}", f"L{leg}", f"A{leg}x", f"A{leg}y", f"k{leg}", f"gamma{leg}")
+    return np.array([float(values[k]) for k in keys])
+
+
+def check_leg(phi: object, name: str = "phi") -> np.ndarray:
+    """Validate a leg parameter vector: positive lengths, non-zero gain, finite numbers."""
+    p = np.asarray(phi, dtype=float)
+    if p.shape != (N_LEG_PARAMS,):
+        raise ValueError(
+            f"{name} must have {N_LEG_PARAMS} entries {PARAM_NAMES}, got shape {p.shape}"
+        )
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"{name} must be finite, got {p}")
+    check_float(f"{name}.l", p[0], low=0.0, low_open=True)
+    check_float(f"{name}.L", p[1], low=0.0, low_open=True)
+    if p[4] == 0:
+        raise ValueError(f"{name}.k (joint gain) must be non-zero, got 0")
+    return p
+
+
+def _points(points: object) -> np.ndarray:
+    p = np.asarray(points, dtype=float)
+    return check_matrix("points", p[None, :] if p.ndim == 1 else p, shape=(None, 2))
+
+
+def _mode(name: str, mode: object) -> int:
+    return int(check_choice(name, mode, (1, -1)))
+
+
+def reach_cosine(points: object, phi: object) -> np.ndarray:
+    """``cos`` of the angle at A between A→P and A→B; a leg reaches P iff ``|value| <= 1``."""
+    p, phi = _points(points), check_leg(phi)
+    l, L, ax, ay = phi[:4]
+    rho = np.hypot(p[:, 0] - ax, p[:, 1] - ay)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (rho**2 + l**2 - L**2) / (2 * l * rho)
+
+
+def active_angle(points: object, phi: object, mode: int) -> np.ndarray:
+    """Active joint angle θ of one leg for end-effector points (inverse kinematics, Eq 23).
+
+    Parameters
+    ----------
+    points : array_like, shape (n, 2) or (2,)
+    phi : array_like, shape (6,)
+        Leg parameters (Eq 21).
+    mode : {1, -1}
+        Working mode.
+
+    Raises
+    ------
+    ValueError
+        If a point is outside the leg's reach (the offending point is named).
+    """
+    mode = _mode("mode", mode)
+    p, phi = _points(points), check_leg(phi)
+    c = reach_cosine(p, phi)
+    bad = ~(np.abs(c) <= 1 + REACH_TOL)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"point {p[i].tolist()} is outside the workspace of the leg based at "
+            f"({phi[2]:g}, {phi[3]:g}): its distance must lie in "
+            f"[|L - l|, l + L] = [{abs(phi[1] - phi[0]):g}, {phi[0] + phi[1]:g}]"
+        )
+    base = np.arctan2(p[:, 1] - phi[3], p[:, 0] - phi[2])
+    return base + mode * np.arccos(np.clip(c, -1.0, 1.0))
+
+
+def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
+    """Joint reading ψ = (θ − γ)/k of one leg for end-effector points (the function gκ, Eq 13).
+
+    θ is wrapped to the branch nearest the offset γ so that ψ is continuous over the workspace.
+    """
+    phi = check_leg(phi)
+    theta = active_angle(points, phi, mode)
+    rel = np.angle(np.exp(1j * (theta - phi[5])))
+    return rel / phi[4]
+
+
+def elbow(psi: object, phi: object) -> np.ndarray:
+    """Elbow points B = A + l (cos θ, sin θ) for joint readings ψ."""
+    phi = check_leg(phi)
+    theta = phi[4] * np.asarray(psi, dtype=float) + phi[5]
+    return np.column_stack([phi[2] + phi[0] * np.cos(theta), phi[3] + phi[0] * np.sin(theta)])
+
+
+def forward(
+    psi1: object, psi2: object, phi1: object, phi2: object, assembly: int = NOMINAL_ASSEMBLY
+) -> np.ndarray:
+    """End-effector points from joint readings (forward kinematics, circle intersection).
+
+    Raises
+    ------
+    ValueError
+        If the distal links cannot close the loop for some reading (the index is named).
+    """
+    assembly = _mode("assembly", assembly)
+    phi1, phi2 = check_leg(phi1, "phi1"), check_leg(phi2, "phi2")
+    b1, b2 = elbow(psi1, phi1), elbow(psi2, phi2)
+    d = b2 - b1
+    dist = np.hypot(d[:, 0], d[:, 1])
+    r1, r2 = phi1[1], phi2[1]
+    a = (dist**2 + r1**2 - r2**2) / (2 * dist)
+    h2 = r1**2 - a**2
+    bad = ~(h2 >= -REACH_TOL)
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(f"joint readings #{i} cannot be assembled: elbows {dist[i]:g} apart")
+    h = np.sqrt(np.clip(h2, 0.0, None))
+    u = d / dist[:, None]
+    normal = np.column_stack([-u[:, 1], u[:, 0]])  # left of B1→B2
+    return b1 + a[:, None] * u + assembly * h[:, None] * normal
+
+
+def singularity_measures(
+    points: object, phi1: object, phi2: object, modes=NOMINAL_MODES
+) -> dict[str, np.ndarray]:
+    """Sines of the angles whose zeros are the singularities, at end-effector points.
+
+    Returns
+    -------
+    dict
+        ``serial1``, ``serial2``: sin of the angle between proximal and distal link of each leg
+        (zero when a leg is stretched or folded: serial singularity); ``parallel``: sin of the
+        angle between the two distal links (zero when they are aligned: parallel singularity).
+    """
+    p = _points(points)
+    out = {}
+    elbows = []
+    for name, phi, mode in (("serial1", phi1, modes[0]), ("serial2", phi2, modes[1])):
+        phi = check_leg(phi)
+        th = active_angle(p, phi, mode)
+        b = np.column_stack([phi[2] + phi[0] * np.cos(th), phi[3] + phi[0] * np.sin(th)])
+        pa, pb = b - phi[2:4], p - b
+        out[name] = (pa[:, 0] * pb[:, 1] - pa[:, 1] * pb[:, 0]) / (phi[0] * phi[1])
+        elbows.append((b, phi[1]))
+    (b1, r1), (b2, r2) = elbows
+    d1, d2 = p - b1, p - b2
+    out["parallel"] = (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / (r1 * r2)
+    return out
+
+
+def in_circle_grid(
+    center: object, radius: float, n_rings: int = 40, n_angles: int = 181
+) -> np.ndarray:
+    """Points filling a disc on a polar grid (center included)."""
+    c = np.asarray(center, dtype=float)
+    radius = check_float("radius", radius, low=0.0)
+    r = np.linspace(0, radius, n_rings)[1:]
+    t = np.linspace(0, 2 * np.pi, n_angles, endpoint=False)
+    rr, tt = np.meshgrid(r, t)
+    pts = np.column_stack([c[0] + (rr * np.cos(tt)).ravel(), c[1] + (rr * np.sin(tt)).ravel()])
+    return np.vstack([c[None, :], pts])
+
+
+def disc_is_regular(
+    center: object,
+    radius: float,
+    phi1: object,
+    phi2: object,
+    modes=NOMINAL_MODES,
+    n_rings: int = 40,
+    n_angles: int = 181,
+) -> bool:
+    """True if every grid point of the disc is reachable and no singularity measure changes sign."""
+    pts = in_circle_grid(center, radius, n_rings, n_angles)
+    for phi in (phi1, phi2):
+        if np.any(np.abs(reach_cosine(pts, phi)) >= 1):
+            return False
+    meas = singularity_measures(pts, phi1, phi2, modes)
+    return all(np.all(m > 0) or np.all(m < 0) for m in meas.values())
+
+
+def miw_numeric(
+    phi1: object,
+    phi2: object,
+    modes=NOMINAL_MODES,
+    y_range=(0.2, 2.0),
+    n_centers: int = 181,
+    tol: float = 1e-5,
+) -> dict[str, float]:
+    """Maximal inscribed workspace found numerically: the largest singularity-free disc.
+
+    Centres are searched on the mechanism's axis of symmetry (x midway between the bases) over
+    ``y_range``; for each, the radius is found by bisection on :func:`disc_is_regular`, and the
+    best centre is refined by a golden-section search.
+
+    Returns
+    -------
+    dict
+        ``cx``, ``cy``, ``radius``.
+    """
+    phi1, phi2 = check_leg(phi1, "phi1"), check_leg(phi2, "phi2")
+    cx = 0.5 * (phi1[2] + phi2[2])
+    r_max = phi1[0] + phi1[1]
+
+    def radius_at(cy: float) -> float:
+        if not disc_is_regular((cx, cy), 0.0, phi1, phi2, modes, 2, 4):
+            return 0.0
+        lo, hi = 0.0, r_max
+        while hi - lo > tol:
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if disc_is_regular((cx, cy), mid, phi1, phi2, modes) else (lo, mid)
+        return lo
+
+    ys = np.linspace(*y_range, n_centers)
+    radii = np.array([radius_at(y) for y in ys])
+    i = int(np.argmax(radii))
+    a, b = ys[max(i - 1, 0)], ys[min(i + 1, len(ys) - 1)]
+    g = (np.sqrt(5) - 1) / 2
+    while b - a > tol:
+        c1, c2 = b - g * (b - a), a + g * (b - a)
+        if radius_at(c1) >= radius_at(c2):
+            b = c2
+        else:
+            a = c1
+    cy = 0.5 * (a + b)
+    return {"cx": float(cx), "cy": float(cy), "radius": float(radius_at(cy))}
+
+
+def miw_closed_form(l: float, L: float, a: float) -> dict[str, float]:
+    """Closed-form MIW of a symmetric 5R (bases at (±a, 0), both elbows outward, P above).
+
+    Derivation (see the chapter): on the symmetry axis the parallel singularity (distal links
+    aligned, here horizontal) lies at ``y_p = sqrt(l² − (L − a)²)``; the outer workspace boundary
+    is at distance ``l + L`` from each base. A disc centred at ``(0, c)`` is bounded by
+    ``c − y_p`` below and ``l + L − sqrt(a² + c²)`` outward; equating the two gives
+    ``c = ((l + L + y_p)² − a²) / (2 (l + L + y_p))`` and ``r = c − y_p``. Valid when
+    ``L > a`` and ``l > L − a`` (the singular point exists) and the inner boundary
+    ``sqrt(a² + c²) − |L − l|`` is not binding.
+    """
+    l = check_float("l", l, low=0.0, low_open=True)
+    L = check_float("L", L, low=0.0, low_open=True)
+    a = check_float("a", a, low=0.0, low_open=True)
+    if not (L > a and l > L - a):
+        raise ValueError(f"closed form needs L > a and l > L - a, got l={l}, L={L}, a={a}")
+    y_p = np.sqrt(l**2 - (L - a) ** 2)
+    s = l + L + y_p
+    c = (s**2 - a**2) / (2 * s)
+    r = c - y_p
+    inner = np.sqrt(a**2 + c**2) - abs(L - l)
+    if inner < r:
+        raise ValueError("closed form not valid: the inner workspace boundary binds first")
+    return {"cx": 0.0, "cy": float(c), "radius": float(r), "y_parallel": float(y_p)}

@@ -1,0 +1,105 @@
+"""5R kinematics, identification Jacobian, identification and posture selection."""
+
+import numpy as np
+import pytest
+
+from mechlib import published as pub
+from mechlib.fivebar import identification as idf
+from mechlib.fivebar import kinematics as kin
+from mechlib.fivebar import postures as ps
+
+PHI1 = kin.leg_vector(pub.TABLE7_NOMINAL, 1)
+PHI2 = kin.leg_vector(pub.TABLE7_NOMINAL, 2)
+REAL1 = kin.leg_vector(pub.TABLE7_REAL, 1)
+REAL2 = kin.leg_vector(pub.TABLE7_REAL, 2)
+MODES = kin.NOMINAL_MODES
+MIW = kin.miw_closed_form(PHI1[0], PHI1[1], abs(PHI1[2]))
+CANDIDATES = kin.in_circle_grid((0.0, MIW["cy"]), 0.8 * MIW["radius"], 8, 24)
+
+
+def test_ik_then_fk_is_identity_over_the_workspace() -> None:
+    pts = kin.in_circle_grid((0.0, MIW["cy"]), 0.99 * MIW["radius"], 12, 36)
+    psi1 = kin.joint_reading(pts, PHI1, MODES[0])
+    psi2 = kin.joint_reading(pts, PHI2, MODES[1])
+    np.testing.assert_allclose(kin.forward(psi1, psi2, PHI1, PHI2), pts, atol=1e-12)
+
+
+def test_thesis_layout_is_mirror_symmetric() -> None:
+    pts = np.array([[0.0, 1.0], [0.2, 1.3]])
+    mirrored = pts * [-1, 1]
+    np.testing.assert_allclose(
+        kin.joint_reading(pts, PHI1, 1), kin.joint_reading(mirrored, PHI2, -1), atol=1e-4
+    )  # γ2 is printed as 3.1416, not π
+
+
+def test_miw_numeric_agrees_with_closed_form() -> None:
+    num = kin.miw_numeric(PHI1, PHI2, n_centers=61, tol=1e-5)
+    assert num["cy"] == pytest.approx(MIW["cy"], abs=5e-4)
+    assert num["radius"] == pytest.approx(MIW["radius"], abs=5e-4)
+
+
+def test_miw_touches_the_parallel_singularity() -> None:
+    bottom = np.array([[0.0, MIW["cy"] - MIW["radius"] + 1e-9]])
+    assert abs(kin.singularity_measures(bottom, PHI1, PHI2)["parallel"][0]) < 1e-3
+
+
+def test_identification_jacobian_matches_finite_differences() -> None:
+    c = idf.identification_jacobian(CANDIDATES, PHI1, 1)
+    h = 1e-7
+    fd = np.column_stack(
+        [
+            (
+                kin.joint_reading(CANDIDATES, PHI1 + h * e, 1)
+                - kin.joint_reading(CANDIDATES, PHI1 - h * e, 1)
+            )
+            / (2 * h)
+            for e in np.eye(6)
+        ]
+    )
+    np.testing.assert_allclose(c, fd, atol=1e-7)
+
+
+def test_noise_free_identification_recovers_the_real_parameters() -> None:
+    rng = np.random.default_rng(0)
+    m = idf.simulate_measurements(CANDIDATES, REAL1, REAL2, PHI1, PHI2, MODES, 0.0, rng)
+    fit = idf.identify_leg(m["points"], m["psi1"], PHI1, 1)
+    np.testing.assert_allclose(fit.phi, REAL1, atol=1e-10)
+    np.testing.assert_allclose(
+        idf.identify_leg_scipy(m["points"], m["psi1"], PHI1, 1), REAL1, atol=1e-9
+    )
+    both = idf.identify_traditional(m["points"], m["psi1"], m["psi2"], PHI1, PHI2, MODES)
+    np.testing.assert_allclose(both, np.r_[REAL1, REAL2], atol=1e-10)
+    assert idf.position_errors(CANDIDATES, both[:6], both[6:], REAL1, REAL2, MODES).max() < 1e-9
+
+
+def test_active_selection_equals_svd_reference() -> None:
+    c1 = idf.identification_jacobian(CANDIDATES, PHI1, 1)
+    a = ps.select_active(c1, 18)
+    assert sorted(a.tolist()) == sorted(ps.select_reference_svd(c1, 18).tolist())
+    assert len(set(a.tolist())) == 18
+    random_set = np.random.default_rng(1).choice(len(c1), 18, replace=False)
+    assert ps.observability_o1(c1[a]) > ps.observability_o1(c1[random_set])
+
+
+def test_o1_definitions_differ_only_by_a_constant_for_fixed_sizes() -> None:
+    c = idf.identification_jacobian(CANDIDATES[:20], PHI1, 1)
+    ratio = ps.observability_o1(c) / ps.observability_borm_menq(c)
+    assert ratio == pytest.approx(np.sqrt(20) / 6)
+
+
+def test_bad_input_gets_clear_errors() -> None:
+    with pytest.raises(ValueError, match="outside the workspace"):
+        kin.joint_reading([[5.0, 5.0]], PHI1, 1)
+    with pytest.raises(ValueError, match=r"mode must be one of \[1, -1\]"):
+        kin.joint_reading([[0.0, 1.0]], PHI1, 0)
+    with pytest.raises(ValueError, match="sigma must be >= 0"):
+        idf.simulate_measurements(
+            CANDIDATES, REAL1, REAL2, PHI1, PHI2, MODES, -1.0, np.random.default_rng(0)
+        )
+    with pytest.raises(ValueError, match="n_select must be <= the number of candidates"):
+        ps.select_active(np.ones((3, 6)), 4)
+    same = np.tile(CANDIDATES[:1], (10, 1))  # one posture repeated: rank 1
+    with pytest.raises(ValueError, match="unidentifiable"):
+        idf.identify_leg(same, kin.joint_reading(same, PHI1, 1), PHI1, 1)
+    with pytest.raises(ValueError, match=r"phi.L must be > 0.0"):
+        kin.check_leg([0.75, -1.0, 0, 0, 1, 0])
