@@ -120,7 +120,8 @@ def identify_leg(
         if np.max(np.abs(dphi)) < tol:
             break
     res = q - joint_reading(p, phi, mode)
-    return LegFit(phi, iterations, float(np.sqrt(np.mean(res**2))), bool(np.max(np.abs(dphi)) < tol))
+    converged = bool(np.max(np.abs(dphi)) < tol)
+    return LegFit(phi, iterations, float(np.sqrt(np.mean(res**2))), converged)
 
 
 def identify_leg_scipy(points: object, psi: object, phi0: object, mode: int) -> np.ndarray:
