@@ -126,3 +126,113 @@ def matrix_difference(
     fig.colorbar(im, ax=axes, label="difference from Eq 8 [%]", shrink=0.8)
     fig.suptitle(title)
     return fig
+
+
+def _singularity_field(mech, xlim, ylim, n=400):
+    """Singularity measures on a grid (NaN where a leg cannot reach)."""
+    from mechlib.fivebar import kinematics as kin
+
+    xs, ys = np.linspace(*xlim, n), np.linspace(*ylim, n)
+    xx, yy = np.meshgrid(xs, ys)
+    pts = np.column_stack([xx.ravel(), yy.ravel()])
+    ok = np.all(
+        [np.abs(kin.reach_cosine(pts, p)) < 1 for p in (mech.nominal1, mech.nominal2)], axis=0
+    )
+    par = np.full(len(pts), np.nan)
+    par[ok] = kin.singularity_measures(pts[ok], mech.nominal1, mech.nominal2, mech.modes)[
+        "parallel"
+    ]
+    return xx, yy, ok.reshape(xx.shape), par.reshape(xx.shape)
+
+
+def _draw_mechanism(ax, mech, point):
+    from mechlib.fivebar import kinematics as kin
+
+    for phi, mode, color in (
+        (mech.nominal1, mech.modes[0], "k"),
+        (mech.nominal2, mech.modes[1], "k"),
+    ):
+        psi = kin.joint_reading(np.atleast_2d(point), phi, mode)
+        b = kin.elbow(psi, phi)[0]
+        ax.plot([phi[2], b[0], point[0]], [phi[3], b[1], point[1]], "-o", color=color, lw=2, ms=4)
+
+
+def fivebar_workspace(mech, miw: dict, pose: tuple[float, float]) -> plt.Figure:
+    """Fig 10: the mechanism in one pose, its reachable set, parallel singularity and MIW."""
+    fig, ax = plt.subplots(figsize=(6.4, 5.2), constrained_layout=True)
+    xx, yy, ok, par = _singularity_field(mech, (-2.2, 2.2), (-0.5, 2.2))
+    ax.contourf(xx, yy, ok, levels=[0.5, 1.5], colors=["#e8f0fa"])
+    ax.contour(
+        xx, yy, np.where(ok, par, np.nan), levels=[0.0], colors=[ACTIVE_COLOR], linewidths=1.2
+    )
+    circle = plt.Circle((miw["cx"], miw["cy"]), miw["radius"], fill=False, color=OURS_COLOR, lw=2)
+    ax.add_patch(circle)
+    _draw_mechanism(ax, mech, np.array(pose))
+    ax.plot([], [], color=ACTIVE_COLOR, label="parallel singularity (working modes +1, −1)")
+    ax.plot([], [], color=OURS_COLOR, label="maximal inscribed workspace")
+    ax.fill([], [], color="#e8f0fa", label="reachable by both legs")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.legend(loc="upper right", fontsize=7)
+    ax.set_title("Fig 10: planar 5R, workspace, singularities and MIW")
+    return fig
+
+
+def fivebar_postures(
+    candidates: np.ndarray, chosen: dict, miw: dict, fraction: float
+) -> plt.Figure:
+    """Fig 12: postures selected for the traditional method and for each leg (D&C)."""
+    fig, axes = plt.subplots(1, 3, figsize=(11, 3.9), constrained_layout=True, sharey=True)
+    for ax, (key, title) in zip(
+        axes,
+        (
+            ("trad", "(a) traditional"),
+            ("leg1", "(b) D&C, left leg"),
+            ("leg2", "(c) D&C, right leg"),
+        ),
+        strict=True,
+    ):
+        ax.plot(candidates[:, 0], candidates[:, 1], ".", color="#cccccc", ms=1.5)
+        sel = candidates[chosen[key]]
+        ax.plot(sel[:, 0], sel[:, 1], "o", color=ACTIVE_COLOR, ms=5)
+        for r, ls in ((miw["radius"], "-"), (fraction * miw["radius"], ":")):
+            ax.add_patch(plt.Circle((miw["cx"], miw["cy"]), r, fill=False, color=OURS_COLOR, ls=ls))
+        ax.set_aspect("equal")
+        ax.set_title(f"{title}: {len(sel)} postures")
+        ax.set_xlabel("x [m]")
+    axes[0].set_ylabel("y [m]")
+    return fig
+
+
+def fivebar_parameter_errors(names, before, dc, trad) -> plt.Figure:
+    """Fig 13: parameter errors (value − real) before and after calibration."""
+    fig, ax = plt.subplots(figsize=(9, 3.6), constrained_layout=True)
+    x = np.arange(len(names))
+    for off, vals, label, color in (
+        (-0.27, before, "nominal (before)", PUBLISHED_COLOR),
+        (0.0, dc, "divide and conquer", OURS_COLOR),
+        (0.27, trad, "traditional", ACTIVE_COLOR),
+    ):
+        ax.bar(x + off, np.abs(vals), 0.27, label=label, color=color)
+    ax.set_yscale("log")
+    ax.set_xticks(x, names, rotation=45)
+    ax.set_ylabel("|parameter − real| [m or rad]")
+    ax.legend(fontsize=7)
+    ax.set_title("Fig 13: residual parameter errors, one seeded draw")
+    return fig
+
+
+def fivebar_error_maps(grid: np.ndarray, maps: dict, miw: dict) -> plt.Figure:
+    """Fig 14: local RMS position error over the workspace, one panel per model."""
+    fig, axes = plt.subplots(1, len(maps), figsize=(4 * len(maps), 3.8), constrained_layout=True)
+    for ax, (title, err) in zip(axes, maps.items(), strict=True):
+        sc = ax.scatter(grid[:, 0], grid[:, 1], c=1e6 * err, s=14, cmap="viridis")
+        ax.add_patch(
+            plt.Circle((miw["cx"], miw["cy"]), miw["radius"], fill=False, color=OURS_COLOR)
+        )
+        ax.set_aspect("equal")
+        ax.set_title(title)
+        fig.colorbar(sc, ax=ax, label="local RMS error [µm]", shrink=0.8)
+    fig.suptitle("Fig 14: position error over the workspace")
+    return fig

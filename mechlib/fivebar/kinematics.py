@@ -27,6 +27,12 @@ REACH_TOL = 1e-12
 """Slack on |cos| <= 1 when testing whether a leg reaches a point."""
 
 
+def leg_keys(leg: int) -> tuple[str, ...]:
+    """Table 7 names of leg ``leg``'s parameters, in Eq 21 order."""
+    check_choice("leg", leg, (1, 2))
+    return (f"l{leg}", f"L{leg}", f"A{leg}x", f"A{leg}y", f"k{leg}", f"gamma{leg}")
+
+
 def leg_vector(values: dict[str, float], leg: int) -> np.ndarray:
     """Leg parameter vector (Eq 21 order) from a dict keyed like Table 7 (``"A1x"``, ``"k2"``).
 
@@ -36,9 +42,7 @@ def leg_vector(values: dict[str, float], leg: int) -> np.ndarray:
         Keys ``l{κ}``, ``L{κ}``, ``A{κ}x``, ``A{κ}y``, ``k{κ}``, ``gamma{κ}``.
     leg : {1, 2}
     """
-    check_choice("leg", leg, (1, 2))
-    keys = (f"l{leg}", f"L{leg}", f"A{leg}x", f"A{leg}y", f"k{leg}", f"gamma{leg}")
-    return np.array([float(values[k]) for k in keys])
+    return np.array([float(values[k]) for k in leg_keys(leg)])
 
 
 def check_leg(phi: object, name: str = "phi") -> np.ndarray:
