@@ -15,7 +15,6 @@ NB_NAMES    := $(notdir $(basename $(NBS)))
 MECHLIB_SRC := $(shell find mechlib -name '*.py' 2>/dev/null)
 EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
 export PYTHONHASHSEED := 0
-export MPLBACKEND := Agg
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
 .PHONY: help env book test unit notebooks check-records run references lint lock clean
