@@ -17,13 +17,14 @@ EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
 export PYTHONHASHSEED := 0
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: help env book test unit notebooks check-records run references lint lock clean
+.PHONY: help env book test unit notebooks check-records run references lint bench lock clean
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
 	@echo "make test        unit tests + every notebook + reference comparison + book build"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
+	@echo "make bench       speed benchmarks (ratios measured in one run)"
 	@echo "make lock        regenerate environment.lock from requirements.in"
 
 # --- environment ------------------------------------------------------------------------------
@@ -78,6 +79,9 @@ run: $(STAMP)
 
 references: $(EXECUTED)
 	$(PY) -m mechlib.records update --records $(BUILD)/records --references tests/references
+
+bench: $(STAMP)
+	$(PY) -m mechlib.bench
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check mechlib tests
