@@ -233,3 +233,95 @@ def fivebar_error_maps(grid: np.ndarray, maps: dict, miw: dict) -> plt.Figure:
         fig.colorbar(sc, ax=ax, label="local RMS error [µm]", shrink=0.8)
     fig.suptitle("Fig 14: position error over the workspace")
     return fig
+
+
+def fivebar_leg_loop(phi: np.ndarray, mode: int, point: tuple[float, float]) -> plt.Figure:
+    """Fig 11: the vector loop P = A + l + L of one leg (Eq 22) with its parameters (Eq 21)."""
+    from mechlib.fivebar import kinematics as kin
+
+    p = np.asarray(point, dtype=float)
+    theta = float(kin.active_angle(p, phi, mode)[0])
+    a = phi[2:4]
+    b = a + phi[0] * np.array([np.cos(theta), np.sin(theta)])
+    fig, ax = plt.subplots(figsize=(5.6, 4.4), constrained_layout=True)
+    arrow = {"length_includes_head": True, "head_width": 0.04, "lw": 1.5}
+    ax.arrow(0.0, 0.0, *a, color=PUBLISHED_COLOR, ls="--", **arrow)
+    ax.arrow(*a, *(b - a), color=OURS_COLOR, **arrow)
+    ax.arrow(*b, *(p - b), color=ACTIVE_COLOR, **arrow)
+    ax.arrow(0.0, 0.0, *p, color="k", **arrow)
+    ref = 0.25 * np.array([np.cos(phi[5]), np.sin(phi[5])])
+    ax.plot([a[0], a[0] + ref[0]], [a[1], a[1] + ref[1]], ":", color="k")
+    arc = np.linspace(0.0, theta, 40)
+    ax.plot(a[0] + 0.18 * np.cos(arc), a[1] + 0.18 * np.sin(arc), color=OURS_COLOR, lw=1)
+    labels = (
+        (0.5 * a + np.array([-0.12, 0.03]), r"$\mathbf{A} = (A_x, A_y)$"),
+        (0.5 * (a + b) + [0.05, 0.0], r"$\mathbf{l}$, length $l$"),
+        (0.5 * (b + p) + [0.05, 0.0], r"$\mathbf{L}$, length $L$"),
+        (0.5 * p + [-0.32, 0.0], r"$\mathbf{P} = (x, y)$"),
+        (a + np.array([0.2, 0.12]), r"$\theta = k\psi + \gamma$"),
+    )
+    for xy, text in labels:
+        ax.annotate(text, xy, fontsize=9)
+    ax.plot(*np.c_[[0.0, 0.0], a, b, p], "o", color="k", ms=4)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("Fig 11: leg loop P = A + l + L (Eqs 22–23)")
+    return fig
+
+
+def fivebar_distributions(
+    rms: dict[str, np.ndarray], param_err: dict[str, np.ndarray], names: Sequence[str]
+) -> plt.Figure:
+    """Monte Carlo distributions: workspace RMS error and per-parameter errors, per strategy."""
+    fig, (ax0, ax1) = plt.subplots(
+        1, 2, figsize=(11, 3.8), constrained_layout=True, gridspec_kw={"width_ratios": [1, 2]}
+    )
+    colors = (OURS_COLOR, ACTIVE_COLOR)
+    bins = np.histogram_bin_edges(1e6 * np.concatenate(list(rms.values())), 30)
+    for (label, vals), color in zip(rms.items(), colors, strict=True):
+        ax0.hist(1e6 * vals, bins, alpha=0.55, color=color, label=label)
+    ax0.set_xlabel("workspace RMS position error [µm]")
+    ax0.set_ylabel("trials")
+    ax0.legend(fontsize=7)
+    x = np.arange(len(names))
+    for off, ((label, err), color) in zip(
+        (-0.2, 0.2), zip(param_err.items(), colors, strict=True), strict=True
+    ):
+        parts = ax1.boxplot(
+            np.abs(err), positions=x + off, widths=0.35, showfliers=False, patch_artist=True
+        )
+        for box in parts["boxes"]:
+            box.set_facecolor(color)
+            box.set_alpha(0.55)
+        ax1.plot([], [], "s", color=color, alpha=0.55, label=label)
+    ax1.set_yscale("log")
+    ax1.set_xticks(x, names, rotation=45)
+    ax1.set_ylabel("|identified − real| [m or rad]")
+    ax1.legend(fontsize=7)
+    fig.suptitle("Monte Carlo distributions over the seeded trials")
+    return fig
+
+
+def fivebar_sensitivity(table, sigmas: Sequence[float], counts: Sequence[int]) -> plt.Figure:
+    """Sensitivity of the D&C vs traditional verdict to σ and to the number of postures.
+
+    ``table`` is the frame of :func:`mechlib.fivebar.study.sensitivity`.
+    """
+    fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(10, 3.6), constrained_layout=True)
+    for n, marker in zip(counts, "osd^v", strict=False):
+        sub = table[table["n_per_leg"] == n]
+        ratio = sub["rms_dc_um"] / sub["rms_trad_um"]
+        ax0.plot(sub["sigma"], ratio, marker=marker, label=f"{n} per leg / {2 * n} shared")
+        ax1.plot(sub["sigma"], 100 * sub["share_dc_better"], marker=marker)
+    ax0.axhline(1.0, color="k", lw=0.8)
+    ax1.axhline(50.0, color="k", lw=0.8)
+    for ax in (ax0, ax1):
+        ax.set_xscale("log")
+        ax.set_xlabel("σ [m and rad]")
+        ax.set_xticks(list(sigmas))
+    ax0.set_ylabel("workspace RMS, D&C / traditional")
+    ax1.set_ylabel("trials where D&C is better [%]")
+    ax0.legend(fontsize=7)
+    fig.suptitle("Sensitivity of the verdict to noise and posture count (thesis's budgets)")
+    return fig

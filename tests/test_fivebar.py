@@ -103,3 +103,19 @@ def test_bad_input_gets_clear_errors() -> None:
         idf.identify_leg(same, kin.joint_reading(same, PHI1, 1), PHI1, 1)
     with pytest.raises(ValueError, match=r"phi.L must be > 0.0"):
         kin.check_leg([0.75, -1.0, 0, 0, 1, 0])
+
+
+def test_poses_at_a_singularity_are_refused_by_name() -> None:
+    parallel = np.array([[0.0, MIW["y_parallel"]]])  # distal links aligned on the symmetry axis
+    assert abs(kin.singularity_measures(parallel, PHI1, PHI2)["parallel"][0]) < 1e-9
+    with pytest.raises(ValueError, match=r"parallel \(distal links aligned\) singularity"):
+        idf.simulate_measurements(
+            parallel, REAL1, REAL2, PHI1, PHI2, MODES, 1e-4, np.random.default_rng(0)
+        )
+    reach = PHI1[0] + PHI1[1]
+    stretched = PHI1[2:4] + reach * np.array([np.cos(1.2), np.sin(1.2)])  # leg 1 stretched
+    with pytest.raises(ValueError, match="serial singularity"):
+        idf.identification_jacobian(stretched[None, :], PHI1, MODES[0])
+    with pytest.raises(ValueError, match=r"serial \(leg 1 stretched or folded\)"):
+        kin.check_regular(stretched[None, :], PHI1, PHI2, MODES)
+    kin.check_regular(CANDIDATES, PHI1, PHI2, MODES)  # the study's candidates are regular

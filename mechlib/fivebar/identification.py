@@ -19,8 +19,10 @@ from scipy.optimize import least_squares
 from mechlib.fivebar.kinematics import (
     N_LEG_PARAMS,
     PARAM_NAMES,
+    SINGULAR_TOL,
     active_angle,
     check_leg,
+    check_regular,
     forward,
     joint_reading,
 )
@@ -45,6 +47,14 @@ def identification_jacobian(points: object, phi: object, mode: int) -> np.ndarra
     u = p[:, 0] - l * np.cos(theta) - ax
     v = p[:, 1] - l * np.sin(theta) - ay
     f_theta = 2 * l * (u * np.sin(theta) - v * np.cos(theta))
+    sine = f_theta / (2 * l * L)
+    if np.any(np.abs(sine) < SINGULAR_TOL):
+        i = int(np.argmax(np.abs(sine) < SINGULAR_TOL))
+        raise ValueError(
+            f"point #{i} {p[i].tolist()} is at a serial singularity of the leg (stretched or "
+            f"folded, |sine| = {abs(sine[i]):.2g}): the identification Jacobian is unbounded; "
+            f"allowed |sine| >= {SINGULAR_TOL:g}"
+        )
     f_p = np.column_stack(
         [-2 * (u * np.cos(theta) + v * np.sin(theta)), np.full_like(u, -2 * L), -2 * u, -2 * v]
     )
@@ -157,7 +167,7 @@ def simulate_measurements(
     ``sigma`` (m and rad, as in the thesis).
     """
     sigma = check_float("sigma", sigma, low=0.0)
-    t = np.atleast_2d(np.asarray(targets, dtype=float))
+    t = check_regular(targets, phi1_nom, phi2_nom, modes)
     psi1 = joint_reading(t, phi1_nom, modes[0])
     psi2 = joint_reading(t, phi2_nom, modes[1])
     p_real = forward(psi1, psi2, phi1_real, phi2_real)

@@ -24,6 +24,8 @@ NOMINAL_MODES: tuple[int, int] = (1, -1)
 NOMINAL_ASSEMBLY = 1
 """End-effector above the elbows (Fig 10)."""
 REACH_TOL = 1e-12
+#: Smallest |sine| of a link angle (see :func:`singularity_measures`) accepted as a regular pose.
+SINGULAR_TOL = 1e-6
 """Slack on |cos| <= 1 when testing whether a leg reaches a point."""
 
 
@@ -182,6 +184,35 @@ def singularity_measures(
     d1, d2 = p - b1, p - b2
     out["parallel"] = (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / (r1 * r2)
     return out
+
+
+def check_regular(
+    points: object, phi1: object, phi2: object, modes=NOMINAL_MODES, min_sine: float = SINGULAR_TOL
+) -> np.ndarray:
+    """Return ``points`` if no pose is singular; otherwise raise naming the first singular one.
+
+    Raises
+    ------
+    ValueError
+        If a point is outside the workspace, or if a serial (leg stretched or folded) or
+        parallel (distal links aligned) singularity measure has ``|sine| < min_sine``.
+    """
+    min_sine = check_float("min_sine", min_sine, low=0.0)
+    p = _points(points)
+    for name, value in singularity_measures(p, phi1, phi2, modes).items():
+        bad = np.abs(value) < min_sine
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            kind = (
+                "parallel (distal links aligned)"
+                if name == "parallel"
+                else (f"serial (leg {name[-1]} stretched or folded)")
+            )
+            raise ValueError(
+                f"point #{i} {p[i].tolist()} is at a {kind} singularity: |sine| = "
+                f"{abs(value[i]):.2g}, allowed |sine| >= {min_sine:g}"
+            )
+    return p
 
 
 def in_circle_grid(

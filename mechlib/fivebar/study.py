@@ -21,6 +21,9 @@ from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import postures as ps
 from mechlib.params import check_float, check_int
 
+#: Fewest postures that can identify one leg's six parameters.
+N_MIN_POSTURES = kin.N_LEG_PARAMS
+
 
 @dataclass(frozen=True)
 class Mechanism:
@@ -179,3 +182,44 @@ def measurement_counts(n_per_leg: int, n_shared: int) -> dict[str, dict[str, int
             "joint_readings": 2 * n_shared,
         },
     }
+
+
+def sensitivity(
+    mech: Mechanism,
+    candidates: np.ndarray,
+    grid: np.ndarray,
+    sigmas: list[float],
+    counts: list[int],
+    n_trials: int,
+    seed: int,
+) -> list[dict[str, float]]:
+    """D&C vs traditional over a grid of noise levels and posture counts.
+
+    For each ``n`` in ``counts`` D&C gets ``n`` postures per leg and the traditional method
+    ``2 n`` shared postures (the thesis's ratio, equal end-effector measurements); each cell
+    runs :func:`monte_carlo` with the same ``seed``.
+
+    Returns
+    -------
+    list of dict
+        One row per (sigma, n): ``sigma``, ``n_per_leg``, ``rms_dc_um``, ``rms_trad_um`` (mean
+        workspace RMS), ``share_dc_better`` and ``p_value`` (:func:`paired_verdict`).
+    """
+    rows = []
+    for n in counts:
+        n = check_int("counts", n, low=N_MIN_POSTURES, high=len(candidates) // 2)
+        chosen = select(mech, candidates, n, 2 * n)
+        for s in sigmas:
+            mc = monte_carlo(mech, candidates, chosen, grid, s, n_trials, seed)
+            verdict = paired_verdict(mc["rms_dc"], mc["rms_trad"])
+            rows.append(
+                {
+                    "sigma": float(s),
+                    "n_per_leg": n,
+                    "rms_dc_um": 1e6 * float(mc["rms_dc"].mean()),
+                    "rms_trad_um": 1e6 * float(mc["rms_trad"].mean()),
+                    "share_dc_better": verdict["share_a_better"],
+                    "p_value": verdict["p_value"],
+                }
+            )
+    return rows
