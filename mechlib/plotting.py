@@ -325,3 +325,123 @@ def fivebar_sensitivity(table, sigmas: Sequence[float], counts: Sequence[int]) -
     ax0.legend(fontsize=7)
     fig.suptitle("Sensitivity of the verdict to noise and posture count (thesis's budgets)")
     return fig
+
+
+def _quads(ax, nodes, quads, values=None, cmap="viridis", **kw):
+    from matplotlib.collections import PolyCollection
+
+    pc = PolyCollection(nodes[quads], **kw)
+    if values is not None:
+        pc.set_array(values)
+        pc.set_cmap(cmap)
+    ax.add_collection(pc)
+    ax.autoscale_view()
+    ax.set_aspect("equal")
+    return pc
+
+
+def hexflex_geometry(g, planar, parts: np.ndarray, part_names: Sequence[str]) -> plt.Figure:
+    """Fig 2: the identified planform, its parts and its dimensions [mm]."""
+    from matplotlib.patches import Patch
+
+    fig, (ax, ax_t) = plt.subplots(
+        1, 2, figsize=(10, 5.2), constrained_layout=True, gridspec_kw={"width_ratios": [1.6, 1]}
+    )
+    colors = plt.cm.tab10(np.arange(len(part_names)))
+    _quads(ax, planar.nodes, planar.quads, facecolors=colors[parts], edgecolors="none")
+    ring = plt.Circle((0, 0), g.ground_radius, fill=False, ls="--", color="k", lw=1)
+    ax.add_patch(ring)
+    ax.annotate(
+        "grounded zone (clamped)",
+        (0, g.ground_radius),
+        (0, g.ground_radius + 4),
+        ha="center",
+        fontsize=8,
+    )
+    for k, name in enumerate(("T1", "T2", "T3")):
+        a = np.deg2rad((90.0, 330.0, 210.0)[k])
+        ax.annotate(
+            name,
+            (1.12 * g.tab_outer * np.cos(a), 1.12 * g.tab_outer * np.sin(a)),
+            ha="center",
+            fontsize=10,
+            weight="bold",
+        )
+    ax.legend(
+        handles=[Patch(color=c, label=n) for c, n in zip(colors, part_names, strict=True)],
+        fontsize=7,
+        loc="lower right",
+    )
+    lim = 1.15 * g.ground_radius
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-0.7 * lim, lim)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    rows = [(k, f"{v:.3g}") for k, v in vars(g).items()]
+    rows += [
+        ("tab centre radius", f"{g.tab_center:.3g}"),
+        ("ground radius", f"{g.ground_radius:.3g}"),
+    ]
+    ax_t.axis("off")
+    table = ax_t.table(
+        cellText=[[k, v] for k, v in rows], colLabels=["dimension", "mm"], loc="center"
+    )
+    table.scale(1, 1.2)
+    fig.suptitle("Fig 2: our HexFlex planform and its dimensions")
+    return fig
+
+
+def hexflex_mesh(sector, full) -> plt.Figure:
+    """Fig 5: (a) the meshed sixth, (b) the whole mesh completed by symmetry."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.8), constrained_layout=True)
+    for ax, m, title in ((axes[0], sector, "(a) one sixth"), (axes[1], full, "(b) full mesh")):
+        _quads(ax, m.nodes, m.quads, facecolors="#dde8f4", edgecolors="k", linewidths=0.15)
+        ax.set_title(f"{title}: {len(m.quads)} quads")
+        ax.set_xlabel("x [mm]")
+    fig.suptitle("Fig 5: finite-element mesh (quads; extruded to one layer of Q2 hexahedra)")
+    return fig
+
+
+def hexflex_actuators(g, planar, directions: np.ndarray, centers: np.ndarray) -> plt.Figure:
+    """Fig 4: positive actuator directions D1 (arrows) and D2 (+z, dots) at each tab."""
+    fig, ax = plt.subplots(figsize=(5.6, 5.2), constrained_layout=True)
+    _quads(ax, planar.nodes, planar.quads, facecolors="#e6e6e6", edgecolors="none")
+    for k in range(3):
+        c, d = centers[k], directions[2 * k, :2]
+        ax.annotate(
+            "", c + 12 * d, c, arrowprops={"arrowstyle": "->", "color": ACTIVE_COLOR, "lw": 2}
+        )
+        ax.plot(*c, "o", color=OURS_COLOR, ms=8, mfc="none", mew=2)
+        ax.plot(*c, ".", color=OURS_COLOR, ms=4)
+        ax.annotate(f"T{k + 1}D1", c + 13 * d, fontsize=8, color=ACTIVE_COLOR)
+        ax.annotate(f"T{k + 1}D2 (+z)", c + np.array([2.0, -4.0]), fontsize=8, color=OURS_COLOR)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title("Fig 4: actuator directions (D2 out of the page)")
+    return fig
+
+
+def hexflex_deformed(planar, disp: np.ndarray, title: str, ax=None, scale: float | None = None):
+    """Deformed planform (in-plane displacements magnified) coloured by u_z [µm]."""
+    own = ax is None
+    if own:
+        fig, ax = plt.subplots(figsize=(5.6, 5.0), constrained_layout=True)
+    span = np.ptp(planar.nodes, axis=0).max()
+    in_plane, out = np.abs(disp[:, :2]).max(), np.abs(disp[:, 2]).max()
+    significant = in_plane > 1e-6 * max(in_plane, out)  # else rounding noise only
+    if scale is None:
+        scale = 0.05 * span / in_plane if significant else 0.0
+    nodes = planar.nodes + scale * disp[:, :2]
+    _quads(ax, planar.nodes, planar.quads, facecolors="none", edgecolors="#bbbbbb", linewidths=0.2)
+    uz = 1e3 * disp[planar.quads, 2].mean(axis=1)
+    uz = np.where(np.abs(uz) > 1e-6 * 1e3 * max(in_plane, out), uz, 0.0)
+    lim = max(np.abs(uz).max(), 1e-12)
+    pc = _quads(ax, nodes, planar.quads, values=uz, cmap="coolwarm", edgecolors="none")
+    pc.set_clim(-lim, lim)
+    ax.set_title(f"{title}\n(in-plane ×{scale:.3g}; colour u_z)", fontsize=8)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    if own:
+        fig.colorbar(pc, ax=ax, label="u_z [µm]", shrink=0.8)
+        return fig
+    return pc

@@ -1,0 +1,47 @@
+"""Invariants of a HexFlex compliance: three-fold symmetry and Eq 8's zero pattern."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechlib.hexflex.geometry import TAB_ANGLES_DEG, TAB_D1_SIGNS
+
+#: Pose rows and force columns that are in-plane (x, y, θz; D1) and out-of-plane (z, θx, θy; D2).
+IN_PLANE_ROWS, OUT_ROWS = (0, 1, 5), (2, 3, 4)
+D1_COLS, D2_COLS = (0, 2, 4), (1, 3, 5)
+
+
+def rotate_pose(pose: np.ndarray, angle_deg: float) -> np.ndarray:
+    """Pose (6,) of the stage rotated about z: translations and rotations turn as vectors."""
+    a = np.deg2rad(angle_deg)
+    r = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    return np.r_[r @ pose[:3], r @ pose[3:]]
+
+
+def symmetry_prediction(compliance: np.ndarray) -> np.ndarray:
+    """Columns of T2 and T3 predicted from T1's by rotating it to their tabs (with D1 signs)."""
+    c = np.asarray(compliance, dtype=float)
+    out = c.copy()
+    for k in (1, 2):
+        angle = TAB_ANGLES_DEG[k] - TAB_ANGLES_DEG[0]
+        sign = TAB_D1_SIGNS[k] / TAB_D1_SIGNS[0]
+        out[:, 2 * k] = sign * rotate_pose(c[:, 0], angle)
+        out[:, 2 * k + 1] = rotate_pose(c[:, 1], angle)
+    return out
+
+
+def symmetry_defect(compliance: np.ndarray) -> float:
+    """max |C − rotated T1 columns| relative to max |C| in each row group (scale-free)."""
+    c = np.asarray(compliance, dtype=float)
+    d = np.abs(c - symmetry_prediction(c))
+    scale = np.abs(c).max(axis=1, keepdims=True)
+    return float((d / scale).max())
+
+
+def zero_pattern_defect(compliance: np.ndarray) -> float:
+    """Largest out-of-plane response to D1 or in-plane response to D2, relative to its row."""
+    c = np.asarray(compliance, dtype=float)
+    scale = np.abs(c).max(axis=1)
+    cross = [abs(c[i, j]) / scale[i] for i in OUT_ROWS for j in D1_COLS]
+    cross += [abs(c[i, j]) / scale[i] for i in IN_PLANE_ROWS for j in D2_COLS]
+    return float(max(cross))

@@ -1,0 +1,111 @@
+"""Identify free dimensions of the HexFlex so that its compliance matches Eq 8's magnitudes.
+
+The four independent magnitudes of Eq 8 (issue specification) are matched in the least-squares
+sense on log-compliance (relative errors, scale-free), over a few free dimensions with bounds
+that keep the geometry physically sensible.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, fields
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.model import HexFlexModel
+from mechlib.params import check_choice, check_int
+
+#: (row, column, sign) of the four independent magnitudes in the 6 × 6 compliance:
+#: x←T1D1, z←T1D2, θx←T1D2, θz←T1D1 (sign: θz←T1D1 is negative in Eq 8).
+TARGET_ENTRIES: tuple[tuple[int, int, int], ...] = ((0, 0, 1), (2, 1, 1), (3, 1, 1), (5, 0, -1))
+TARGET_LABELS: tuple[str, ...] = (
+    "x←T1D1 [µm/N]",
+    "z←T1D2 [µm/N]",
+    "θx←T1D2 [µrad/N]",
+    "|θz←T1D1| [µrad/N]",
+)
+#: Allowed range [mm] of each dimension during the fit.
+FIT_BOUNDS: dict[str, tuple[float, float]] = {
+    "thickness": (0.3, 5.0),
+    "beam_width": (0.3, 3.0),
+    "link_width": (0.3, 3.0),
+    "beam_length": (10.0, 40.0),
+    "link_length": (3.0, 15.0),
+    "tab_depth": (4.0, 20.0),
+}
+
+
+def target_values(compliance: np.ndarray) -> np.ndarray:
+    """The four magnitudes of :data:`TARGET_ENTRIES` from a 6 × 6 compliance."""
+    c = np.asarray(compliance, dtype=float)
+    return np.array([s * c[i, j] for i, j, s in TARGET_ENTRIES])
+
+
+@dataclass(frozen=True)
+class Identification:
+    """Result of :func:`identify`: geometry, achieved and target magnitudes, the fit history."""
+
+    geometry: HexFlexGeometry
+    achieved: np.ndarray
+    target: np.ndarray
+    n_evaluations: int
+    history: np.ndarray
+
+    @property
+    def relative_error(self) -> np.ndarray:
+        """achieved / target − 1 per magnitude."""
+        return self.achieved / self.target - 1.0
+
+
+def identify(
+    start: HexFlexGeometry,
+    target: np.ndarray,
+    free: Sequence[str] = ("thickness", "beam_width", "link_width", "beam_length"),
+    element: str = "q2",
+    max_evaluations: int = 40,
+) -> Identification:
+    """Fit the ``free`` dimensions of ``start`` to the four target magnitudes (log least squares).
+
+    At most ``max_evaluations`` FE models are solved (finite-difference Jacobians included); the
+    best geometry seen is returned.
+
+    Raises
+    ------
+    ValueError
+        If a free dimension is unknown or has no bounds, or ``target`` is not 4 positive values.
+    """
+    names = [f.name for f in fields(HexFlexGeometry)]
+    for name in free:
+        check_choice("free dimension", name, tuple(n for n in names if n in FIT_BOUNDS))
+    target = np.asarray(target, dtype=float)
+    if target.shape != (4,) or np.any(target <= 0):
+        raise ValueError(f"target must be 4 positive magnitudes, got {target.tolist()}")
+    max_evaluations = check_int("max_evaluations", max_evaluations, low=1, high=1000)
+    lo = np.log([FIT_BOUNDS[n][0] for n in free])
+    hi = np.log([FIT_BOUNDS[n][1] for n in free])
+    x0 = np.clip(np.log([getattr(start, n) for n in free]), lo, hi)
+    history: list[np.ndarray] = []
+
+    def residual(logdims: np.ndarray) -> np.ndarray:
+        if len(history) >= max_evaluations:  # scipy does not count Jacobian evaluations
+            raise _BudgetSpent
+        g = start.replace(**dict(zip(free, np.exp(logdims), strict=True)))
+        achieved = target_values(HexFlexModel(g, element=element).compliance())
+        history.append(np.r_[np.exp(logdims), achieved])
+        return np.log(achieved / target)
+
+    try:
+        least_squares(residual, x0, bounds=(lo, hi), diff_step=1e-3)
+    except _BudgetSpent:
+        pass
+    hist = np.asarray(history)
+    cost = np.sum(np.log(hist[:, len(free) :] / target) ** 2, axis=1)
+    best_row = hist[int(np.argmin(cost))]
+    best = start.replace(**dict(zip(free, best_row[: len(free)], strict=True)))
+    return Identification(best, best_row[len(free) :], target, len(history), hist)
+
+
+class _BudgetSpent(Exception):
+    """Raised inside the residual when the evaluation budget is spent."""

@@ -1,0 +1,158 @@
+"""Quad mesh of one sixth of the planform (gmsh) completed by symmetry, and its hex extrusion.
+
+As in the thesis (sec. 2.6.1), one sixth of the mechanism is meshed — the wedge between T1's
+axis (90°) and the stage edge's midline (30°) — and the whole is obtained by one reflection
+(about the T1 axis) and two rotations by 120°; coincident nodes on the cut lines are merged.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.params import check_float
+
+#: Element growth from the beams to the stage and tabs.
+COARSENING = 4.0
+#: Nodes closer than this fraction of the element size are merged.
+MERGE_TOL = 1e-6
+
+
+@dataclass(frozen=True)
+class PlanarMesh:
+    """All-quad planar mesh: ``nodes`` (n, 2) in mm, ``quads`` (m, 4) counter-clockwise."""
+
+    nodes: np.ndarray
+    quads: np.ndarray
+
+
+def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING) -> PlanarMesh:
+    """All-quad mesh of the 30°–90° sector.
+
+    Elements are of size ``size`` [mm] at the corners of the beams and links and grow to
+    ``coarsening * size`` on the stage and the tabs (never larger than ``COARSE_CAP`` times the
+    thickness).
+
+    Raises
+    ------
+    ValueError
+        If ``size`` is larger than the narrowest beam (at least one element across each beam
+        is required) or not positive.
+    """
+    narrowest = min(g.beam_width, g.link_width)
+    size = check_float("mesh_size [mm]", size, low=0.0, high=narrowest, low_open=True)
+    import gmsh
+
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.model.add("hexflex_sector")
+        occ = gmsh.model.occ
+        tags, fine = [], []
+        for part, rects in g.rectangles().items():
+            for r0, r1, s0, s1 in rects:  # leg T1: global (x, y) = (s, r)
+                tags.append((2, occ.addRectangle(s0, r0, 0.0, s1 - s0, r1 - r0)))
+                if part in ("beam", "link"):
+                    fine += [(s0, r0), (s1, r0), (s0, r1), (s1, r1)]
+        mid = 0.5 * g.stage_radius * np.array([np.cos(np.pi / 6), np.sin(np.pi / 6)])
+        pts = [occ.addPoint(0, 0, 0), occ.addPoint(*mid, 0), occ.addPoint(0, g.stage_radius, 0)]
+        lines = [occ.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
+        tags.append((2, occ.addPlaneSurface([occ.addCurveLoop(lines)])))
+        occ.fuse(tags[:1], tags[1:])
+        occ.synchronize()
+        occ.removeAllDuplicates()
+        occ.synchronize()
+        surfaces = gmsh.model.getEntities(2)
+        gmsh.model.addPhysicalGroup(2, [t for _, t in surfaces])
+        coarse = max(size, coarsening * size)
+        fine_xy = np.asarray(fine)
+        for dim_tag in gmsh.model.getEntities(0):
+            xyz = gmsh.model.getValue(0, dim_tag[1], [])
+            near = np.min(np.hypot(*(fine_xy - xyz[:2]).T)) < 1e-6 * g.ground_radius
+            gmsh.model.mesh.setSize([dim_tag], 2 * (size if near else coarse))
+        # sizes are doubled because the all-quad subdivision below halves every element
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 2 * coarse)
+        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 1)
+        gmsh.option.setNumber("Mesh.Algorithm", 8)
+        gmsh.option.setNumber("Mesh.RecombineAll", 1)
+        gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 1)  # all quads
+        gmsh.option.setNumber("Mesh.RandomSeed", 1)
+        gmsh.model.mesh.generate(2)
+        node_tags, coords, _ = gmsh.model.mesh.getNodes()
+        etypes, _, enodes = gmsh.model.mesh.getElements(2)
+    finally:
+        gmsh.finalize()
+    quad_type = 3
+    if set(int(e) for e in etypes) != {quad_type}:
+        raise RuntimeError(f"gmsh returned non-quad elements: types {list(etypes)}")
+    xy = np.asarray(coords).reshape(-1, 3)[:, :2]
+    index = {int(t): i for i, t in enumerate(node_tags)}
+    quads = np.vectorize(index.__getitem__)(np.asarray(enodes[0]).reshape(-1, 4).astype(int))
+    used = np.unique(quads)
+    remap = np.full(len(xy), -1)
+    remap[used] = np.arange(len(used))
+    return _orient(PlanarMesh(xy[used], remap[quads]))
+
+
+def _orient(m: PlanarMesh) -> PlanarMesh:
+    """Make every quad counter-clockwise."""
+    p = m.nodes[m.quads]
+    area = 0.5 * np.sum(
+        p[:, :, 0] * np.roll(p[:, :, 1], -1, axis=1) - np.roll(p[:, :, 0], -1, axis=1) * p[:, :, 1],
+        axis=1,
+    )
+    quads = m.quads.copy()
+    quads[area < 0] = quads[area < 0][:, ::-1]
+    return PlanarMesh(m.nodes, quads)
+
+
+def _merge(parts: list[PlanarMesh], tol: float) -> PlanarMesh:
+    nodes = np.vstack([p.nodes for p in parts])
+    offsets = np.cumsum([0] + [len(p.nodes) for p in parts[:-1]])
+    quads = np.vstack([p.quads + o for p, o in zip(parts, offsets, strict=True)])
+    rep = np.arange(len(nodes))
+    for i, j in sorted(cKDTree(nodes).query_pairs(tol)):
+        ri, rj = rep[i], rep[j]
+        while rep[ri] != ri:
+            ri = rep[ri]
+        while rep[rj] != rj:
+            rj = rep[rj]
+        rep[max(ri, rj)] = min(ri, rj)
+    for k in range(len(rep)):
+        r = k
+        while rep[r] != r:
+            r = rep[r]
+        rep[k] = r
+    keep, inverse = np.unique(rep, return_inverse=True)
+    return _orient(PlanarMesh(nodes[keep], inverse[quads]))
+
+
+def full_mesh(sector: PlanarMesh, size: float) -> PlanarMesh:
+    """Complete a sector mesh by the reflection x → −x and rotations by 120° and 240°."""
+    mirror = PlanarMesh(sector.nodes * np.array([-1.0, 1.0]), sector.quads)
+    leg = _merge([sector, mirror], MERGE_TOL * size)
+    parts = []
+    for k in range(3):
+        a = 2 * np.pi * k / 3
+        rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+        parts.append(PlanarMesh(leg.nodes @ rot.T, leg.quads))
+    return _merge(parts, MERGE_TOL * size)
+
+
+def extrude(m: PlanarMesh, thickness: float) -> tuple[np.ndarray, np.ndarray]:
+    """One layer of 8-node hexahedra through the thickness, mid-plane at z = 0.
+
+    Returns
+    -------
+    coors : ndarray, shape (2 n, 3)
+        Bottom nodes first, then top nodes.
+    hexes : ndarray, shape (m, 8)
+        SfePy ``3_8`` order (bottom face counter-clockwise seen from +z, then top face).
+    """
+    n = len(m.nodes)
+    h = 0.5 * thickness
+    coors = np.vstack([np.c_[m.nodes, np.full(n, -h)], np.c_[m.nodes, np.full(n, h)]])
+    return coors, np.hstack([m.quads, m.quads + n])

@@ -1,0 +1,316 @@
+"""SfePy finite-element model of the HexFlex: factorise once, solve many load cases.
+
+Two element kinds on the same planar quad mesh:
+
+- ``"q2"`` (reference): one layer of 27-node (Q2) hexahedra through the thickness — linear
+  hexahedra lock in bending (``../shared/TOOLCHAIN.md``);
+- ``"shell"``: SfePy's ``shell10x`` Reissner–Mindlin shell (the thesis used shells in ANSYS).
+
+Units: mm, N, MPa (N/mm²). The stiffness matrix is assembled and factorised once per geometry;
+a load case is one back-substitution, and the 6 × 6 compliance (pose per unit actuator force,
+µm/N and µrad/N, columns in the order of Eq 4) comes from six of them. (The geometrically non-linear
+solve is not implemented yet.)
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse.linalg as sla
+
+from mechlib.hexflex import geometry as geo
+from mechlib.hexflex import mesh as ms
+from mechlib.hexflex.pose import fit_operator
+from mechlib.params import check_choice, check_float, check_int, check_matrix
+
+ELEMENTS: tuple[str, ...] = ("q2", "shell")
+#: Al 7075-T6: Young's modulus [MPa] and Poisson's ratio (issue specification).
+AL7075_YOUNG_MPA = 71_700.0
+AL7075_POISSON = 0.33
+#: Largest |actuator force| the model accepts [N] (Table 1 uses ±1 N; sweeps go further).
+MAX_FORCE_N = 50.0
+#: Default element size at the beams as a fraction of the narrowest beam width: one Q2 element
+#: across a beam is exact for the beam alone (see ``beamcheck``) but the joints at the links'
+#: ends need about two (convergence study in the hexflex notebook).
+DEFAULT_MESH_FRACTION = 0.7
+#: Shell drilling stiffness factor (SfePy's shell10x examples).
+SHELL_DRILL = 1e-7
+#: Quadrature order of the Q2 solid terms.
+QUAD_ORDER = 4
+_TAB_GROUP = 10
+
+
+def _quiet_sfepy() -> None:
+    from sfepy.base.base import output
+
+    output.set_output(quiet=True)
+
+
+@dataclass
+class HexFlexModel:
+    """A linear FE model of one geometry, with its factorised stiffness.
+
+    Parameters
+    ----------
+    geometry : HexFlexGeometry
+    young : float
+        Young's modulus [MPa], > 0.
+    poisson : float
+        Poisson's ratio, in (−1, 0.5).
+    mesh_size : float, optional
+        Target in-plane element size at the beams [mm]; default: ``DEFAULT_MESH_FRACTION`` times
+        the narrowest beam width. Must not exceed that width (at least one element across).
+    element : {"q2", "shell"}
+    """
+
+    geometry: geo.HexFlexGeometry = field(default_factory=geo.HexFlexGeometry)
+    young: float = AL7075_YOUNG_MPA
+    poisson: float = AL7075_POISSON
+    mesh_size: float | None = None
+    element: str = "q2"
+    timings: dict[str, float] = field(default_factory=dict, init=False)
+
+    def __post_init__(self) -> None:
+        _quiet_sfepy()
+        g = self.geometry
+        self.young = check_float("young [MPa]", self.young, low=0.0, low_open=True)
+        self.poisson = check_float("poisson", self.poisson, low=-1.0, high=0.499, low_open=True)
+        self.element = check_choice("element", self.element, ELEMENTS)
+        narrowest = min(g.beam_width, g.link_width)
+        size = DEFAULT_MESH_FRACTION * narrowest if self.mesh_size is None else self.mesh_size
+        self.mesh_size = check_float("mesh_size [mm]", size, low=0.0, high=narrowest, low_open=True)
+        t0 = time.perf_counter()
+        self.planar = ms.full_mesh(ms.sector_mesh(g, self.mesh_size), self.mesh_size)
+        t1 = time.perf_counter()
+        self._build()
+        t2 = time.perf_counter()
+        self._matrix = self._assemble()
+        t3 = time.perf_counter()
+        self._lu = sla.splu(self._matrix.tocsc())
+        t4 = time.perf_counter()
+        self.timings.update(mesh=t1 - t0, setup=t2 - t1, assembly=t3 - t2, factorisation=t4 - t3)
+        self._loads = self._unit_loads()
+        self._fit = self._pose_operator()
+        self._compliance: np.ndarray | None = None
+
+    # construction ---------------------------------------------------------------------------
+    def _cell_groups(self) -> np.ndarray:
+        g, m = self.geometry, self.planar
+        centroids = m.nodes[m.quads].mean(axis=1)
+        part = geo.classify(centroids, g)
+        lost = part < 0  # a coarse cell spanning a re-entrant corner: its centroid is outside
+        if np.all(lost):
+            raise RuntimeError("mesh cells outside the planform: geometry and mesh disagree")
+        if np.any(lost):
+            from scipy.spatial import cKDTree
+
+            _, near = cKDTree(centroids[~lost]).query(centroids[lost])
+            part[lost] = part[~lost][near]
+        leg = geo.tab_of(centroids)
+        r, _ = geo.local_coordinates(centroids)
+        bar = (part == geo.PARTS.index("tab")) & (r[np.arange(len(r)), leg] >= g.tab_inner - 1e-9)
+        return np.where(bar, _TAB_GROUP + leg, 1 + part).astype(np.int32)
+
+    def _build(self) -> None:
+        from sfepy.discrete import (
+            Equation,
+            Equations,
+            FieldVariable,
+            Function,
+            Material,
+            Problem,
+        )
+        from sfepy.discrete.conditions import Conditions, EssentialBC
+        from sfepy.discrete.fem import FEDomain, Field, Mesh
+        from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
+        from sfepy.terms import Term
+
+        g, m = self.geometry, self.planar
+        groups = self._cell_groups()
+        if self.element == "q2":
+            coors, cells = ms.extrude(m, g.thickness)
+            desc = "3_8"
+        else:
+            coors, cells = np.c_[m.nodes, np.zeros(len(m.nodes))], m.quads
+            desc = "2_4"
+        mesh = Mesh.from_data(
+            "hexflex",
+            np.ascontiguousarray(coors),
+            np.zeros(len(coors), dtype=np.int32),
+            [cells.astype(np.int32)],
+            [groups],
+            [desc],
+        )
+        domain = FEDomain("hexflex", mesh)
+        omega = domain.create_region("Omega", "all")
+        radius = g.ground_radius
+
+        def ground(coors, domain=None):
+            r, _ = geo.local_coordinates(coors)
+            return np.flatnonzero(r.max(axis=1) >= radius - 1e-6 * radius)
+
+        gamma = domain.create_region(
+            "Ground",
+            "vertices by ground",
+            "facet",
+            functions={"ground": Function("ground", ground)},
+        )
+        self._tabs = [
+            domain.create_region(f"Tab{k}", f"cells of group {_TAB_GROUP + k}") for k in range(3)
+        ]
+        if self.element == "q2":
+            fld = Field.from_args("fu", np.float64, "vector", omega, approx_order=2)
+            mat = Material("m", D=stiffness_from_youngpoisson(3, self.young, self.poisson))
+        else:
+            import sfepy.mechanics.shell10x as sh
+
+            fld = Field.from_args(
+                "fu", np.float64, 6, omega, approx_order=1, poly_space_basis="shell10x"
+            )
+            mat = Material(
+                "m",
+                D=sh.create_elastic_tensor(young=self.young, poisson=self.poisson),
+                values={".drill": SHELL_DRILL},
+            )
+        u = FieldVariable("u", "unknown", fld)
+        v = FieldVariable("v", "test", fld, primary_var_name="u")
+        integral = self._shell_integral() if self.element == "shell" else None
+        term = (
+            Term.new("dw_lin_elastic(m.D, v, u)", _integral(QUAD_ORDER), omega, m=mat, v=v, u=u)
+            if self.element == "q2"
+            else Term.new("dw_shell10x(m.D, m.drill, v, u)", integral, omega, m=mat, v=v, u=u)
+        )
+        pb = Problem("hexflex", equations=Equations([Equation("balance", term)]))
+        pb.set_bcs(ebcs=Conditions([EssentialBC("clamp", gamma, {"u.all": 0.0})]))
+        pb.time_update()
+        self._pb, self._field, self._u, self._v, self._mat = pb, fld, u, v, mat
+        self._domain, self._omega = domain, omega
+        self._coors = np.asarray(fld.get_coor()[: fld.n_vertex_dof], dtype=float)
+        self._eq = pb.get_variables()["u"].eq_map.eq
+        self._n_comp = 3 if self.element == "q2" else 6
+
+    def _shell_integral(self):
+        from sfepy.discrete import Integral
+
+        aux = Integral("i", order=3)
+        qp_coors, qp_weights = aux.get_qp("3_8")
+        qp_coors[:, 2] = self.geometry.thickness * (qp_coors[:, 2] - 0.5)
+        return Integral(
+            "i", coors=qp_coors, weights=qp_weights * self.geometry.thickness, order="custom"
+        )
+
+    def _assemble(self):
+        """Tangent (= stiffness) matrix of the Problem's own equations, reduced to free DOFs."""
+        self._pb.time_update(create_matrix=True)
+        self._pb.get_variables().init_state()
+        self._pb.update_materials()
+        return self._pb.get_evaluator().eval_tangent_matrix(np.zeros(self.n_dofs)).copy()
+
+    def _unit_loads(self) -> np.ndarray:
+        """Reduced load vectors (n_dofs, 6) of unit actuator forces spread over each tab bar."""
+        from sfepy.discrete import Material
+
+        dirs = geo.actuator_directions()
+        out = np.zeros((self.n_dofs, 6))
+        for j in range(6):
+            k = j // 2
+            if self.element == "q2":
+                vol = self._pb.evaluate(f"ev_volume.{QUAD_ORDER}.Tab{k}(u)", u=self._u)
+                mat = Material("f", val=(dirs[j] / vol)[:, None])
+                out[:, j] = self._pb.evaluate(
+                    f"dw_volume_lvf.{QUAD_ORDER}.Tab{k}(f.val, v)",
+                    mode="weak",
+                    dw_mode="vector",
+                    f=mat,
+                    v=self._v,
+                    copy_materials=False,
+                )
+            else:
+                out[:, j] = self._lumped_load(k, dirs[j])
+        return out
+
+    def _lumped_load(self, k: int, direction: np.ndarray) -> np.ndarray:
+        m = self.planar
+        cells = self._tabs[k].get_cells()
+        p = m.nodes[m.quads[cells]]
+        area = 0.5 * np.abs(
+            np.sum(
+                p[:, :, 0] * np.roll(p[:, :, 1], -1, 1) - np.roll(p[:, :, 0], -1, 1) * p[:, :, 1], 1
+            )
+        )
+        weights = np.zeros(len(m.nodes))
+        np.add.at(weights, m.quads[cells], np.repeat(area[:, None] / 4, 4, axis=1))
+        full = np.zeros((len(m.nodes), self._n_comp))
+        full[:, :3] = weights[:, None] / weights.sum() * direction
+        red = np.zeros(self.n_dofs)
+        eq = self._eq.reshape(-1, self._n_comp)[: len(m.nodes)]
+        ok = eq >= 0
+        red[eq[ok]] = full[ok]
+        return red
+
+    def _pose_operator(self) -> np.ndarray:
+        """Operator (6, n_dofs): pose [µm, µrad] from a reduced solution."""
+        stage = geo.in_stage(self._coors, self.geometry)
+        op = fit_operator(self._coors[stage])
+        idx = self._eq.reshape(-1, self._n_comp)[: len(self._coors)][stage, :3].ravel()
+        if np.any(idx < 0):
+            raise RuntimeError("stage nodes are clamped: geometry error")
+        self._stage_idx = idx
+        return op
+
+    # public API -----------------------------------------------------------------------------
+    @property
+    def n_dofs(self) -> int:
+        """Number of free degrees of freedom (after clamping the ground)."""
+        return int(self._eq.max()) + 1
+
+    def _check_forces(self, forces: object) -> np.ndarray:
+        f = np.asarray(forces, dtype=float)
+        f = check_matrix("forces [N]", f[None, :] if f.ndim == 1 else f, shape=(None, 6))
+        worst = np.abs(f).max(initial=0.0)
+        if worst > MAX_FORCE_N:
+            raise ValueError(
+                f"forces [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}] N, "
+                f"got |force| = {worst:g}"
+            )
+        return f
+
+    def solve_reduced(self, forces: object) -> np.ndarray:
+        """Reduced displacement vectors (n_dofs, n) for actuator forces (n, 6) [N]."""
+        f = self._check_forces(forces)
+        return self._lu.solve(np.ascontiguousarray(self._loads @ f.T))
+
+    def poses(self, forces: object) -> np.ndarray:
+        """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
+        u = self.solve_reduced(forces)
+        return (self._fit @ u[self._stage_idx]).T
+
+    def compliance(self) -> np.ndarray:
+        """Pose per unit actuator force (6, 6): rows x y z θx θy θz, columns T1D1 … T3D2."""
+        if self._compliance is None:
+            self._compliance = self.poses(np.eye(6)).T
+        return self._compliance.copy()
+
+    def port_compliance(self) -> np.ndarray:
+        """Work-conjugate port compliance (6, 6) [µm/N]: ``Bᵀ K⁻¹ B`` for the unit load vectors.
+
+        Entry (i, j) is the load-weighted displacement of port i along its force direction under
+        a unit force at port j; Maxwell–Betti reciprocity makes it symmetric.
+        """
+        return 1e3 * self._loads.T @ self.solve_reduced(np.eye(6))
+
+    def midplane_displacements(self, forces: object) -> np.ndarray:
+        """Displacements (n_nodes, 3) [mm] of the planar mesh nodes for one force vector (6,)."""
+        red = self.solve_reduced(forces)[:, 0]
+        full = self._pb.get_variables().make_full_vec(red).reshape(-1, self._n_comp)
+        n = len(self.planar.nodes)
+        vert = full[: len(self._coors), :3]
+        return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def _integral(order: int):
+    from sfepy.discrete import Integral
+
+    return Integral("i", order=check_int("order", order, low=1))

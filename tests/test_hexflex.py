@@ -1,0 +1,108 @@
+"""HexFlex geometry, mesh, FE model invariants, beam check and bad input."""
+
+import numpy as np
+import pytest
+
+from mechlib import published as pub
+from mechlib.hexflex import beamcheck, checks
+from mechlib.hexflex import geometry as geo
+from mechlib.hexflex import mesh as ms
+from mechlib.hexflex.model import HexFlexModel
+from mechlib.hexflex.pose import fit_operator
+
+SMALL = geo.HexFlexGeometry(
+    stage_radius=8,
+    arm_half_width=2.5,
+    arm_end=14,
+    link_width=1.0,
+    link_length=8,
+    wall_width=3,
+    slot=2,
+    tab_depth=8,
+    beam_width=1.0,
+    beam_length=20,
+    thickness=0.8,
+)
+
+
+@pytest.fixture(scope="module")
+def shell_model() -> HexFlexModel:
+    return HexFlexModel(SMALL, element="shell", mesh_size=1.0)
+
+
+def test_actuator_layout_reproduces_the_sign_pattern_of_eq8() -> None:
+    d = geo.actuator_directions()
+    np.testing.assert_allclose(
+        d[0::2, :2], [[1, 0], [0.5, np.sqrt(3) / 2], [-0.5, np.sqrt(3) / 2]], atol=1e-12
+    )
+    # moment about z of a D1 force at the tab axis: its sign is the sign of Eq 8's θz row
+    e_r, _ = geo.tab_frames()
+    mz = e_r[:, 0] * d[0::2, 1] - e_r[:, 1] * d[0::2, 0]
+    assert np.array_equal(np.sign(mz), np.sign(pub.EQ8_ST[5, 0::2]))
+    # moments about x and y of a +z force at each tab: signs of Eq 8's θx and θy rows
+    assert np.array_equal(np.sign(np.round(e_r[:, 1], 9)), np.sign(pub.EQ8_ST[3, 1::2]))
+    assert np.array_equal(np.sign(np.round(-e_r[:, 0], 9)), np.sign(pub.EQ8_ST[4, 1::2]))
+
+
+def test_symmetry_completed_mesh_has_merged_cut_lines_and_three_fold_symmetry() -> None:
+    sector = ms.sector_mesh(SMALL, 1.0)
+    full = ms.full_mesh(sector, 1.0)
+    assert len(full.quads) == 6 * len(sector.quads)
+    # every edge is shared by at most two quads: the cut lines were merged
+    edges = np.sort(np.stack([full.quads, np.roll(full.quads, -1, axis=1)], -1).reshape(-1, 2), 1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    assert counts.max() == 2
+    a = 2 * np.pi / 3
+    rot = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+    from scipy.spatial import cKDTree
+
+    dist, _ = cKDTree(full.nodes).query(full.nodes @ rot.T)
+    assert dist.max() < 1e-9
+
+
+def test_model_invariants_symmetry_zero_pattern_reciprocity(shell_model: HexFlexModel) -> None:
+    c = shell_model.compliance()
+    assert checks.symmetry_defect(c) < 1e-6
+    assert checks.zero_pattern_defect(c) < 1e-6
+    p = shell_model.port_compliance()
+    assert np.abs(p - p.T).max() < 1e-9 * np.abs(p).max()
+    assert np.all(np.sign(c[pub.EQ8_ST != 0]) == np.sign(pub.EQ8_ST[pub.EQ8_ST != 0]))
+    # a symmetry defect is detected when one column is perturbed
+    bad = c.copy()
+    bad[0, 2] *= 1.01
+    assert checks.symmetry_defect(bad) > 1e-3
+
+
+def test_poses_are_linear_and_the_fit_recovers_a_rigid_motion(shell_model: HexFlexModel) -> None:
+    f = np.array([[0.3, -1.0, 0.5, 0.2, -0.7, 1.0]])
+    np.testing.assert_allclose(
+        shell_model.poses(f)[0], shell_model.compliance() @ f[0], rtol=1e-9, atol=1e-9
+    )
+    pts = np.random.default_rng(0).normal(size=(20, 3))
+    t, th = np.array([1e-3, -2e-3, 5e-4]), np.array([1e-5, 2e-5, -3e-5])
+    u = t + np.cross(th, pts)
+    np.testing.assert_allclose(fit_operator(pts) @ u.ravel(), np.r_[1e3 * t, 1e6 * th], atol=1e-9)
+
+
+def test_q2_beam_matches_timoshenko_within_one_percent() -> None:
+    for direction in ("in_plane", "out_of_plane"):
+        fe = beamcheck.fe_tip(20.0, 1.0, 0.6, 71700.0, 0.33, direction, n_width=2, tip_length=1.0)
+        th = beamcheck.timoshenko_tip(19.5, 1.0, 0.6, 71700.0, 0.33, direction, at=20.0)
+        assert fe / th == pytest.approx(1.0, abs=0.01)
+
+
+def test_bad_input_gets_clear_errors(shell_model: HexFlexModel) -> None:
+    with pytest.raises(ValueError, match=r"thickness \[mm\] must be > 0"):
+        SMALL.replace(thickness=-1.0)
+    with pytest.raises(ValueError, match="beam_width must be <= wall_width"):
+        SMALL.replace(beam_width=5.0)
+    with pytest.raises(ValueError, match="legs overlap"):
+        SMALL.replace(link_length=30.0)
+    with pytest.raises(ValueError, match=r"link_width must be < arm_end - stage_radius"):
+        SMALL.replace(link_width=7.0)
+    with pytest.raises(ValueError, match=r"mesh_size \[mm\] must be"):
+        ms.sector_mesh(SMALL, 2.0)
+    with pytest.raises(ValueError, match=r"forces \[N\] must lie in \[-50, 50\] N"):
+        shell_model.poses(np.full((1, 6), 60.0))
+    with pytest.raises(ValueError, match="element must be one of"):
+        HexFlexModel(SMALL, element="q1")
