@@ -445,3 +445,13 @@ def hexflex_deformed(planar, disp: np.ndarray, title: str, ax=None, scale: float
         fig.colorbar(pc, ax=ax, label="u_z [µm]", shrink=0.8)
         return fig
     return pc
+
+
+def hexflex_stage_motions(model, poses: np.ndarray, labels: Sequence[str]) -> plt.Figure:
+    """Fig 3: deformed shapes for given stage poses, each driven by the inverse model's forces."""
+    forces = model.forces_for_poses(poses)
+    fig, axes = plt.subplots(2, 3, figsize=(11, 7), constrained_layout=True)
+    for ax, f, label in zip(axes.ravel(), forces, labels, strict=True):
+        hexflex_deformed(model.planar, model.midplane_displacements(f), label, ax=ax)
+    fig.suptitle("Fig 3: the six stage motions, each from the inverse model")
+    return fig

@@ -97,15 +97,18 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
     return _orient(PlanarMesh(xy[used], remap[quads]))
 
 
+def signed_areas(m: PlanarMesh) -> np.ndarray:
+    """Signed area of every quad [mm²] (shoelace; positive when counter-clockwise)."""
+    p = m.nodes[m.quads]
+    x, y = p[:, :, 0], p[:, :, 1]
+    return 0.5 * np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1)
+
+
 def _orient(m: PlanarMesh) -> PlanarMesh:
     """Make every quad counter-clockwise."""
-    p = m.nodes[m.quads]
-    area = 0.5 * np.sum(
-        p[:, :, 0] * np.roll(p[:, :, 1], -1, axis=1) - np.roll(p[:, :, 0], -1, axis=1) * p[:, :, 1],
-        axis=1,
-    )
+    flip = signed_areas(m) < 0
     quads = m.quads.copy()
-    quads[area < 0] = quads[area < 0][:, ::-1]
+    quads[flip] = quads[flip][:, ::-1]
     return PlanarMesh(m.nodes, quads)
 
 

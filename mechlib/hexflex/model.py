@@ -97,6 +97,7 @@ class HexFlexModel:
 
     # construction ---------------------------------------------------------------------------
     def _cell_groups(self) -> np.ndarray:
+        """Cell groups for SfePy; also sets ``cell_parts`` (index into ``geometry.PARTS``)."""
         g, m = self.geometry, self.planar
         centroids = m.nodes[m.quads].mean(axis=1)
         part = geo.classify(centroids, g)
@@ -111,6 +112,7 @@ class HexFlexModel:
         leg = geo.tab_of(centroids)
         r, _ = geo.local_coordinates(centroids)
         bar = (part == geo.PARTS.index("tab")) & (r[np.arange(len(r)), leg] >= g.tab_inner - 1e-9)
+        self.cell_parts = part
         return np.where(bar, _TAB_GROUP + leg, 1 + part).astype(np.int32)
 
     def _build(self) -> None:
@@ -234,12 +236,7 @@ class HexFlexModel:
     def _lumped_load(self, k: int, direction: np.ndarray) -> np.ndarray:
         m = self.planar
         cells = self._tabs[k].get_cells()
-        p = m.nodes[m.quads[cells]]
-        area = 0.5 * np.abs(
-            np.sum(
-                p[:, :, 0] * np.roll(p[:, :, 1], -1, 1) - np.roll(p[:, :, 0], -1, 1) * p[:, :, 1], 1
-            )
-        )
+        area = np.abs(ms.signed_areas(m))[cells]
         weights = np.zeros(len(m.nodes))
         np.add.at(weights, m.quads[cells], np.repeat(area[:, None] / 4, 4, axis=1))
         full = np.zeros((len(m.nodes), self._n_comp))
@@ -301,6 +298,12 @@ class HexFlexModel:
         """
         return 1e3 * self._loads.T @ self.solve_reduced(np.eye(6))
 
+    def forces_for_poses(self, poses: object) -> np.ndarray:
+        """Actuator forces (n, 6) [N] that produce the stage poses (n, 6) (inverse model, Eq 9)."""
+        p = np.asarray(poses, dtype=float)
+        p = check_matrix("poses", p[None, :] if p.ndim == 1 else p, shape=(None, 6))
+        return np.linalg.solve(self.compliance(), p.T).T
+
     def midplane_displacements(self, forces: object) -> np.ndarray:
         """Displacements (n_nodes, 3) [mm] of the planar mesh nodes for one force vector (6,)."""
         red = self.solve_reduced(forces)[:, 0]
@@ -308,6 +311,37 @@ class HexFlexModel:
         n = len(self.planar.nodes)
         vert = full[: len(self._coors), :3]
         return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def convergence(
+    geometry: geo.HexFlexGeometry,
+    fractions: list[float],
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+    elements: tuple[str, ...] = ELEMENTS,
+) -> list[dict[str, object]]:
+    """Compliance of one geometry over mesh sizes (fractions of the narrowest beam) and elements.
+
+    Returns
+    -------
+    list of dict
+        ``element``, ``mesh_size`` [mm], ``n_dofs`` and ``compliance`` (6, 6) per model.
+    """
+    narrowest = min(geometry.beam_width, geometry.link_width)
+    rows = []
+    for fraction in fractions:
+        size = narrowest * check_float("fractions", fraction, low=0.0, high=1.0, low_open=True)
+        for kind in elements:
+            m = HexFlexModel(geometry, young=young, poisson=poisson, element=kind, mesh_size=size)
+            rows.append(
+                {
+                    "element": kind,
+                    "mesh_size": size,
+                    "n_dofs": m.n_dofs,
+                    "compliance": m.compliance(),
+                }
+            )
+    return rows
 
 
 def _integral(order: int):
