@@ -198,8 +198,18 @@ TABLE5_N_RUNS: int = 1000
 # --- Table 7: planar 5R parameters, nominal and disturbed ("real") --------------------------
 # printed order; lengths in m, angles in rad, gains dimensionless.
 TABLE7_NAMES: tuple[str, ...] = (
-    "A1x", "A1y", "k1", "gamma1", "l1", "L1",
-    "A2x", "A2y", "l2", "L2", "k2", "gamma2",
+    "A1x",
+    "A1y",
+    "k1",
+    "gamma1",
+    "l1",
+    "L1",
+    "A2x",
+    "A2y",
+    "l2",
+    "L2",
+    "k2",
+    "gamma2",
 )
 _TABLE7 = """
 -0.5000 -0.4988

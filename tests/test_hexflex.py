@@ -106,3 +106,25 @@ def test_bad_input_gets_clear_errors(shell_model: HexFlexModel) -> None:
         shell_model.poses(np.full((1, 6), 60.0))
     with pytest.raises(ValueError, match="element must be one of"):
         HexFlexModel(SMALL, element="q1")
+
+
+def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() -> None:
+    model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
+    f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])
+    # the factorise-once path equals SfePy's own Problem.solve() per case
+    np.testing.assert_allclose(model.poses_plain_sfepy(f[None]), model.poses(f), rtol=1e-7)
+    small = 1e-2 * f
+    lin = model.poses(small)[0]
+    nonlin, iterations = model.poses_nonlinear(small)
+    assert len(iterations) == 1 and 1 <= iterations[0] <= 4
+    np.testing.assert_allclose(nonlin, lin, rtol=1e-3, atol=1e-6 * abs(lin).max())
+    # ... and the difference is of second order: it grows like the load relative to the response
+    big = 10.0 * f
+    departure = np.abs(model.poses_nonlinear(big)[0] - model.poses(big)[0]).max()
+    assert departure > 0.01 * np.abs(model.poses(big)).max()
+    with pytest.raises(RuntimeError, match="max_iterations = 2"):
+        model.solve_nonlinear(big, max_iterations=2)
+    with pytest.raises(ValueError, match="steps must be"):
+        model.solve_nonlinear(f, steps=0)
+    with pytest.raises(ValueError, match="element must be 'q2'"):
+        HexFlexModel(SMALL, element="shell", mesh_size=1.0).solve_nonlinear(f)

@@ -8,8 +8,12 @@ Two element kinds on the same planar quad mesh:
 
 Units: mm, N, MPa (N/mm²). The stiffness matrix is assembled and factorised once per geometry;
 a load case is one back-substitution, and the 6 × 6 compliance (pose per unit actuator force,
-µm/N and µrad/N, columns in the order of Eq 4) comes from six of them. (The geometrically non-linear
-solve is not implemented yet.)
+µm/N and µrad/N, columns in the order of Eq 4) comes from six of them.
+
+Geometric non-linearity (Q2 only): total-Lagrangian neo-Hookean solid (``dw_tl_he_neohook`` +
+``dw_tl_bulk_penalty``, shear and bulk moduli from E and ν so that its small-strain limit is the
+linear model exactly) solved by Newton's method with load steps. The first iteration from the
+undeformed state reuses the linear factorisation (the tangent at u = 0 *is* the linear stiffness).
 """
 
 from __future__ import annotations
@@ -39,6 +43,12 @@ DEFAULT_MESH_FRACTION = 0.7
 SHELL_DRILL = 1e-7
 #: Quadrature order of the Q2 solid terms.
 QUAD_ORDER = 4
+#: Newton stopping rule: ‖residual‖ ≤ NEWTON_TOL · ‖external load‖. The round-off floor of the
+#: TL residual on these meshes is ≈ 3e-8 (measured), so tighter values cannot be met.
+NEWTON_TOL = 1e-6
+#: ... or when a Newton correction is below this fraction of the displacement (small loads, where
+#: the residual's round-off floor, relative to the load, rises above NEWTON_TOL).
+INCREMENT_TOL = 1e-10
 _TAB_GROUP = 10
 
 
@@ -94,6 +104,7 @@ class HexFlexModel:
         self._loads = self._unit_loads()
         self._fit = self._pose_operator()
         self._compliance: np.ndarray | None = None
+        self._nl_evaluator = None
 
     # construction ---------------------------------------------------------------------------
     def _cell_groups(self) -> np.ndarray:
@@ -283,6 +294,155 @@ class HexFlexModel:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
         u = self.solve_reduced(forces)
         return (self._fit @ u[self._stage_idx]).T
+
+    def _nonlinear_evaluator(self):
+        """SfePy evaluator of the TL neo-Hookean internal forces on the same field and BCs."""
+        if self._nl_evaluator is None:
+            from sfepy.discrete import Equation, Equations, Material, Problem
+            from sfepy.terms import Term
+
+            e, nu = self.young, self.poisson
+            mat = Material("s", mu=e / (2 * (1 + nu)), K=e / (3 * (1 - 2 * nu)))
+            i = _integral(QUAD_ORDER)
+            kw = dict(s=mat, v=self._v, u=self._u)
+            iso = Term.new("dw_tl_he_neohook(s.mu, v, u)", i, self._omega, **kw)
+            vol = Term.new("dw_tl_bulk_penalty(s.K, v, u)", i, self._omega, **kw)
+            pb = Problem("hexflex_tl", equations=Equations([Equation("balance", iso + vol)]))
+            pb.set_bcs(ebcs=self._pb.ebcs)
+            pb.time_update(create_matrix=True)
+            pb.get_variables().init_state()
+            pb.update_materials()
+            self._nl_evaluator = pb.get_evaluator()
+        return self._nl_evaluator
+
+    def solve_nonlinear(
+        self,
+        forces: object,
+        steps: int = 1,
+        tol: float = NEWTON_TOL,
+        max_iterations: int = 25,
+    ) -> tuple[np.ndarray, list[int]]:
+        """Geometrically non-linear equilibrium under one actuator force vector (6,) [N].
+
+        Parameters
+        ----------
+        forces : array_like (6,)
+            Dead loads on the six ports [N], within ``±MAX_FORCE_N``.
+        steps : int
+            Equal load increments (1–100); Newton restarts from the previous step's solution.
+        tol : float
+            Relative residual at which Newton stops, in [1e-7, 1e-2].
+        max_iterations : int
+            Newton iterations allowed per step (1–100).
+
+        Returns
+        -------
+        u : ndarray (n_dofs,)
+            Reduced displacement vector [mm].
+        iterations : list of int
+            Newton iterations used in each load step.
+        """
+        if self.element != "q2":
+            raise ValueError(
+                f"element must be 'q2' for the non-linear solve (SfePy's shell10x is linear), "
+                f"got {self.element!r}"
+            )
+        f = self._check_forces(forces)
+        if f.shape[0] != 1:
+            raise ValueError(f"forces must be one vector of 6 forces, got shape {f.shape}")
+        steps = check_int("steps", steps, low=1, high=100)
+        tol = check_float("tol", tol, low=1e-7, high=1e-2)
+        max_iterations = check_int("max_iterations", max_iterations, low=1, high=100)
+        ev = self._nonlinear_evaluator()
+        load = self._loads @ f[0]
+        scale = np.linalg.norm(load)
+        u = np.zeros(self.n_dofs)
+        used: list[int] = []
+        if scale == 0.0:
+            return u, used
+        for k in range(1, steps + 1):
+            target = load * (k / steps)
+            for it in range(max_iterations + 1):
+                try:
+                    res = ev.eval_residual(u).copy() - target
+                except ValueError as err:  # SfePy's "warp violation": inverted elements
+                    raise RuntimeError(
+                        f"non-linear solve failed at load step {k}/{steps} for forces "
+                        f"{f[0].tolist()} N ({err}); use more steps"
+                    ) from err
+                if np.linalg.norm(res) <= tol * scale:
+                    used.append(it)
+                    break
+                if it == max_iterations:
+                    raise RuntimeError(
+                        f"Newton did not converge in max_iterations = {max_iterations} at load "
+                        f"step {k}/{steps} for forces {f[0].tolist()} N (relative residual "
+                        f"{np.linalg.norm(res) / scale:.2e} > tol = {tol:g}); use more steps"
+                    )
+                if not u.any():
+                    du = self._lu.solve(res)
+                else:
+                    tangent = ev.eval_tangent_matrix(u).copy()
+                    du = sla.splu(tangent.tocsc()).solve(res)
+                u = u - du
+                if np.linalg.norm(du) <= INCREMENT_TOL * np.linalg.norm(u):
+                    used.append(it + 1)  # at the round-off floor of the residual
+                    break
+        return u, used
+
+    def poses_nonlinear(self, forces: object, steps: int = 1) -> tuple[np.ndarray, list[int]]:
+        """Stage pose (6,) [µm, µrad] of the geometrically non-linear solution and the Newton
+        iterations per load step (see :meth:`solve_nonlinear`). The pose is the same
+        small-rotation rigid-body fit as the linear model's, so the two compare like with like."""
+        u, iterations = self.solve_nonlinear(forces, steps=steps)
+        return self._fit @ u[self._stage_idx], iterations
+
+    def poses_plain_sfepy(self, forces: object) -> np.ndarray:
+        """Stage poses (n, 6) by SfePy's own ``Problem.solve()``, one full solve per load case.
+
+        The textbook SfePy path — each case builds the load terms, assembles, factorises and
+        solves (``nls.newton`` + ``ls.scipy_direct``). It exists as the cross-check of
+        :meth:`poses` and as the baseline of the speed benchmark (``make bench``).
+        """
+        from sfepy.discrete import Equation, Equations, Material, Problem
+        from sfepy.solvers.ls import ScipyDirect
+        from sfepy.solvers.nls import Newton
+        from sfepy.terms import Term
+
+        if self.element != "q2":
+            raise ValueError(f"element must be 'q2' for the plain SfePy path, got {self.element!r}")
+        f = self._check_forces(forces)
+        dirs = geo.actuator_directions()
+        integral = _integral(QUAD_ORDER)
+        stiff = Term.new(
+            "dw_lin_elastic(m.D, v, u)", integral, self._omega, m=self._mat, v=self._v, u=self._u
+        )
+        out = np.empty((len(f), 6))
+        for n, row in enumerate(f):
+            rhs = None
+            for k in range(3):
+                vol = self._pb.evaluate(f"ev_volume.{QUAD_ORDER}.Tab{k}(u)", u=self._u)
+                force = row[2 * k] * dirs[2 * k] + row[2 * k + 1] * dirs[2 * k + 1]
+                val = np.zeros((self._n_comp, 1))
+                val[:3, 0] = force / vol
+                mat = Material(f"f{k}", val=val)
+                term = Term.new(
+                    f"dw_volume_lvf(f{k}.val, v)",
+                    integral,
+                    self._tabs[k],
+                    v=self._v,
+                    **{f"f{k}": mat},
+                )
+                rhs = term if rhs is None else rhs + term
+            pb = Problem("plain", equations=Equations([Equation("balance", stiff - rhs)]))
+            pb.set_bcs(ebcs=self._pb.ebcs)
+            ls = ScipyDirect({})
+            pb.set_solver(Newton({"i_max": 1, "eps_a": 1e-12, "eps_r": 1e-10}, lin_solver=ls))
+            state = pb.solve(save_results=False)
+            full = state.get_state_parts()["u"].reshape(-1, self._n_comp)
+            stage = geo.in_stage(self._coors, self.geometry)
+            out[n] = self._fit @ full[: len(self._coors)][stage, :3].ravel()
+        return out
 
     def compliance(self) -> np.ndarray:
         """Pose per unit actuator force (6, 6): rows x y z θx θy θz, columns T1D1 … T3D2."""
