@@ -185,3 +185,56 @@ def error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
 def check_runs(name: str, n: object, low: int = 1, high: int = 1_000_000) -> int:
     """Validate a run count parameter."""
     return check_int(name, n, low=low, high=high)
+
+
+def fit_quadratic(design: object, responses: object) -> dict[str, object]:
+    """Least-squares fit of the full second-order model of Eq 6 (see :func:`quadratic_features`).
+
+    Returns
+    -------
+    dict
+        ``coef`` (features, outputs), ``names`` of the features, ``residuals`` (runs, outputs).
+
+    Raises
+    ------
+    ValueError
+        If the design has fewer runs than the model has coefficients (28 for six factors).
+    """
+    a, names = quadratic_features(design)
+    y = check_matrix("responses", responses, shape=(a.shape[0], None))
+    if a.shape[0] < a.shape[1]:
+        raise ValueError(
+            f"design needs at least {a.shape[1]} runs for the quadratic model, got {a.shape[0]}"
+        )
+    coef, *_ = np.linalg.lstsq(a, y, rcond=None)
+    return {"coef": coef, "names": names, "residuals": y - a @ coef}
+
+
+def predict_quadratic(coef: object, design: object) -> np.ndarray:
+    """Predictions of a :func:`fit_quadratic` model for a design (runs, factors)."""
+    a, _ = quadratic_features(design)
+    return a @ check_matrix("coef", coef, shape=(a.shape[1], None))
+
+
+def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
+    """One scikit-learn Gaussian process per output (constant × RBF + white noise kernel,
+    normalised targets, seeded optimiser restarts)."""
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+
+    x, y = _xy(design, responses)
+    seed = check_int("seed", seed, low=0)
+    out = []
+    for j in range(y.shape[1]):
+        kernel = ConstantKernel(1.0) * RBF(length_scale=np.ones(x.shape[1])) + WhiteKernel(1e-6)
+        gp = GaussianProcessRegressor(
+            kernel, normalize_y=True, n_restarts_optimizer=2, random_state=seed
+        )
+        out.append(gp.fit(x, y[:, j]))
+    return out
+
+
+def predict_gp(models: list[object], design: object) -> np.ndarray:
+    """Predictions (runs, outputs) of :func:`fit_gp` models."""
+    x = check_matrix("design", design)
+    return np.column_stack([m.predict(x) for m in models])

@@ -107,6 +107,26 @@ def load(path: Path) -> dict[str, Any]:
     return json.loads(Path(path).read_text())
 
 
+def recorded_value(notebook: str, key: str) -> Any:
+    """A value recorded by another notebook in this build (``records_dir()/<notebook>.json``).
+
+    Raises
+    ------
+    FileNotFoundError
+        When that notebook has not been executed in this build, naming the command that does it.
+    """
+    path = records_dir() / f"{notebook}.json"
+    if not path.exists():
+        raise FileNotFoundError(
+            f"no record of notebook {notebook!r} at {path}: execute it first "
+            f"(make notebooks, or make run NB={notebook})"
+        )
+    values = load(path)["values"]
+    if key not in values:
+        raise KeyError(f"notebook {notebook!r} recorded no value {key!r}; it has {sorted(values)}")
+    return values[key]["value"]
+
+
 def _compare_value(key: str, got: Any, ref: Any, rtol: float, atol: float) -> list[str]:
     if isinstance(ref, (str, bool)) or ref is None:
         return [] if got == ref else [f"{key}: got {got!r}, reference {ref!r}"]

@@ -1,0 +1,249 @@
+"""Virtual experiments on the HexFlex model: a design of actuator forces in, stage poses out.
+
+:func:`run_experiments` splits a design into tasks (blocks of rows for the linear model, one row
+per task for the non-linear one), hands them to any :class:`concurrent.futures.Executor` — the
+default runs them in-process; a dask cluster's ``client.get_executor()`` or a
+``ProcessPoolExecutor`` work the same way — and caches each finished task on disk under a key
+made of the model specification, the kind of analysis and the task's forces. A task that fails
+is reported by experiment index, and every completed result is kept (in the cache and on the
+exception).
+
+Workers build the FE model from a picklable :class:`ModelSpec` and keep it for the life of the
+process, so each worker pays the assembly and factorisation once.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import hashlib
+import json
+from dataclasses import asdict, dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_FORCE_N, HexFlexModel
+from mechlib.params import check_choice, check_int, check_matrix
+
+KINDS: tuple[str, ...] = ("linear", "nonlinear")
+#: Rows per task for the linear model (one batched back-substitution each).
+LINEAR_BLOCK = 250
+_CACHE_VERSION = 1
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """Everything that defines an FE model (picklable, hashable, JSON-serialisable)."""
+
+    geometry: HexFlexGeometry
+    young: float = AL7075_YOUNG_MPA
+    poisson: float = AL7075_POISSON
+    mesh_size: float | None = None
+    element: str = "q2"
+
+    def key(self) -> str:
+        """Stable text of the specification (cache key ingredient)."""
+        d = asdict(self)
+        return json.dumps(d, sort_keys=True)
+
+    def build(self) -> HexFlexModel:
+        """A fresh model (assembly and factorisation)."""
+        return HexFlexModel(
+            self.geometry,
+            young=self.young,
+            poisson=self.poisson,
+            mesh_size=self.mesh_size,
+            element=self.element,
+        )
+
+
+@lru_cache(maxsize=4)
+def model_for(spec: ModelSpec) -> HexFlexModel:
+    """The model of ``spec``, built once per process."""
+    return spec.build()
+
+
+class InProcessExecutor(cf.Executor):
+    """Runs each submitted call at once in the calling thread (the default executor)."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        fut: cf.Future = cf.Future()
+        try:
+            fut.set_result(fn(*args, **kwargs))
+        except BaseException as err:  # reported through the future, as any executor does
+            fut.set_exception(err)
+        return fut
+
+
+class ExperimentError(RuntimeError):
+    """An experiment failed; ``completed`` maps run index → pose (6,) of every finished run."""
+
+    def __init__(self, message: str, failed: list[int], completed: dict[int, np.ndarray]):
+        super().__init__(message)
+        self.failed = failed
+        self.completed = completed
+
+
+def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+    model = model_for(spec)
+    if kind == "linear":
+        return model.poses(forces)
+    return np.array([model.poses_nonlinear(f, steps=steps)[0] for f in forces])
+
+
+def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
+    h = hashlib.sha256()
+    h.update(f"{_CACHE_VERSION}|{spec.key()}|{kind}|{steps}|".encode())
+    h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
+    return h.hexdigest()[:32]
+
+
+def check_forces_design(design: object) -> np.ndarray:
+    """A design of actuator forces: (n, 6) finite values within ±``MAX_FORCE_N`` N."""
+    d = np.asarray(design, dtype=float)
+    if d.ndim != 2 or d.shape[1] != 6:
+        raise ValueError(
+            f"design must have 6 factor columns (T1D1 … T3D2) and one row per run, got shape "
+            f"{d.shape}"
+        )
+    d = check_matrix("design [N]", d, shape=(None, 6))
+    worst = float(np.abs(d).max(initial=0.0))
+    if worst > MAX_FORCE_N:
+        raise ValueError(
+            f"design [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}], got {worst:g}"
+        )
+    return d
+
+
+def run_experiments(
+    spec: ModelSpec,
+    design: object,
+    *,
+    kind: str = "linear",
+    steps: int = 1,
+    executor: cf.Executor | None = None,
+    cache_dir: Path | None = None,
+    progress: bool = True,
+) -> np.ndarray:
+    """Stage poses (n, 6) [µm, µrad] of the experiments of a force design (n, 6) [N].
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        The FE model.
+    design : array_like (n, 6)
+        Actuator forces per run, columns T1D1 … T3D2, within ±``MAX_FORCE_N``.
+    kind : {"linear", "nonlinear"}
+        Linear statics (batched back-substitutions) or the geometrically non-linear solve.
+    steps : int
+        Load steps of the non-linear solve (1–100).
+    executor : concurrent.futures.Executor, optional
+        Where tasks run; default in-process.
+    cache_dir : Path, optional
+        Folder of cached task results; ``None`` disables caching.
+    progress : bool
+        Show a tqdm progress bar over tasks.
+
+    Raises
+    ------
+    ExperimentError
+        When tasks fail: names the failed runs, and carries every completed pose.
+    """
+    d = check_forces_design(design)
+    kind = check_choice("kind", kind, KINDS)
+    steps = check_int("steps", steps, low=1, high=100)
+    block = LINEAR_BLOCK if kind == "linear" else 1
+    chunks = [np.arange(i, min(i + block, len(d))) for i in range(0, len(d), block)]
+    out = np.full((len(d), 6), np.nan)
+    done = np.zeros(len(d), dtype=bool)
+    if cache_dir is not None:
+        cache_dir = Path(cache_dir)
+        cache_dir.mkdir(parents=True, exist_ok=True)
+    pending: dict[cf.Future, np.ndarray] = {}
+    pool = executor if executor is not None else InProcessExecutor()
+    for rows in chunks:
+        path = cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy" if cache_dir else None
+        if path is not None and path.exists():
+            out[rows], done[rows] = np.load(path), True
+            continue
+        pending[pool.submit(_task, spec, kind, d[rows], steps)] = rows
+    failed: list[tuple[int, BaseException]] = []
+    bar = None
+    if progress and pending:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=len(pending), desc=f"{kind} FE experiments", unit="task")
+    for fut in cf.as_completed(pending):
+        rows = pending[fut]
+        try:
+            res = np.asarray(fut.result(), dtype=float).reshape(len(rows), 6)
+        except Exception as err:  # reported below with the run index
+            failed.append((int(rows[0]), err))
+        else:
+            out[rows], done[rows] = res, True
+            if cache_dir is not None:
+                np.save(cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", res)
+        if bar is not None:
+            bar.update()
+    if bar is not None:
+        bar.close()
+    if failed:
+        failed.sort(key=lambda p: p[0])
+        first, err = failed[0]
+        lost = [int(i) for i in np.flatnonzero(~done)]
+        raise ExperimentError(
+            f"{len(lost)} of {len(d)} experiments failed (first: run {first}, forces "
+            f"{d[first].tolist()} N: {err}); {int(done.sum())} completed results are kept",
+            failed=lost,
+            completed={int(i): out[i].copy() for i in np.flatnonzero(done)},
+        )
+    return out
+
+
+def linearity_sweep(
+    model: HexFlexModel, direction: object, amplitudes: object, steps: int = 1
+) -> dict[str, np.ndarray]:
+    """Non-linear against linear poses along one force direction scaled by several amplitudes.
+
+    Parameters
+    ----------
+    model : HexFlexModel
+        A Q2 model (its linear and non-linear solves are compared on the same mesh).
+    direction : array_like (6,)
+        Force direction; scaled so that its largest |component| is 1 N.
+    amplitudes : array_like
+        Largest actuator force of each case [N], in (0, ``MAX_FORCE_N``].
+    steps : int
+        Load steps per N of amplitude (at least one step per case).
+
+    Returns
+    -------
+    dict
+        ``amplitude`` (m,), ``linear`` and ``nonlinear`` poses (m, 6), ``rel_pct`` (m, 6) the
+        pointwise relative error 100 |ψ_nl − ψ_lin| / |ψ_nl| of the linear model per component,
+        and ``iterations`` (m,) the Newton iterations spent.
+    """
+    d = check_matrix("direction", np.atleast_2d(np.asarray(direction, dtype=float)), shape=(1, 6))[
+        0
+    ]
+    if not np.abs(d).max() > 0:
+        raise ValueError("direction must have a non-zero component")
+    d = d / np.abs(d).max()
+    amps = np.atleast_1d(np.asarray(amplitudes, dtype=float))
+    if amps.ndim != 1 or amps.size == 0 or np.any(~(amps > 0)) or np.any(amps > MAX_FORCE_N):
+        raise ValueError(f"amplitudes must lie in (0, {MAX_FORCE_N:g}] N, got {amps.tolist()}")
+    steps = check_int("steps", steps, low=1, high=100)
+    lin = model.poses(amps[:, None] * d)
+    nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
+    for i, a in enumerate(amps):
+        nonlin[i], used = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
+        iters[i] = sum(used)
+    return {
+        "amplitude": amps,
+        "linear": lin,
+        "nonlinear": nonlin,
+        "rel_pct": 100 * np.abs(nonlin - lin) / np.abs(nonlin),
+        "iterations": iters,
+    }

@@ -1,0 +1,80 @@
+"""Experiment runner: executors (in-process, dask), disk cache, failures and bad designs."""
+
+import concurrent.futures as cf
+
+import numpy as np
+import pytest
+
+from mechlib.hexflex import experiments as ex
+from tests.test_hexflex import SMALL
+
+SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
+
+
+class FailingExecutor(cf.Executor):
+    """Runs calls in-process but fails the second one, as a lost worker would."""
+
+    def __init__(self) -> None:
+        self.calls = 0
+
+    def submit(self, fn, /, *args, **kwargs):
+        self.calls += 1
+        fut: cf.Future = cf.Future()
+        if self.calls == 2:
+            fut.set_exception(OSError("worker lost"))
+        else:
+            fut.set_result(fn(*args, **kwargs))
+        return fut
+
+
+def _design(n: int) -> np.ndarray:
+    return np.random.default_rng(5).uniform(-1, 1, (n, 6))
+
+
+def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> None:
+    d = _design(30)
+    got = ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)
+    np.testing.assert_array_equal(got, ex.model_for(SPEC).poses(d))
+    files = sorted(tmp_path.glob("*.npy"))
+    assert len(files) == 1
+    # a cached result is read back, not recomputed: tamper with it and see it come back
+    np.save(files[0], np.zeros((30, 6)))
+    assert not ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False).any()
+    other = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0, young=70_000.0)
+    assert ex.run_experiments(other, d, cache_dir=tmp_path, progress=False).any()
+
+
+def test_dask_local_cluster_gives_identical_results() -> None:
+    distributed = pytest.importorskip("distributed")
+    d = _design(600)
+    serial = ex.run_experiments(SPEC, d, progress=False)
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        parallel = ex.run_experiments(SPEC, d, executor=client.get_executor(), progress=False)
+    np.testing.assert_array_equal(parallel, serial)
+
+
+def test_a_failed_task_is_named_and_completed_results_are_kept(tmp_path) -> None:
+    d = _design(600)  # three tasks of LINEAR_BLOCK = 250 rows
+    msg = r"250 of 600 experiments failed \(first: run 250"
+    with pytest.raises(ex.ExperimentError, match=msg) as info:
+        ex.run_experiments(SPEC, d, executor=FailingExecutor(), cache_dir=tmp_path, progress=False)
+    assert info.value.failed == list(range(250, 500))
+    assert sorted(info.value.completed) == [*range(250), *range(500, 600)]
+    # the completed tasks were cached: the rerun only computes the failed block
+    assert len(list(tmp_path.glob("*.npy"))) == 2
+    full = ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)
+    np.testing.assert_allclose(full[250:500], ex.model_for(SPEC).poses(d[250:500]))
+
+
+def test_bad_designs_are_refused_by_name() -> None:
+    with pytest.raises(ValueError, match="design must have 6 factor columns"):
+        ex.run_experiments(SPEC, np.zeros((3, 5)), progress=False)
+    with pytest.raises(ValueError, match=r"design \[N\] must lie in \[-50, 50\]"):
+        ex.run_experiments(SPEC, np.full((2, 6), 80.0), progress=False)
+    with pytest.raises(ValueError, match="kind must be one of"):
+        ex.run_experiments(SPEC, np.zeros((2, 6)), kind="plastic", progress=False)
