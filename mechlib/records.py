@@ -108,18 +108,23 @@ def load(path: Path) -> dict[str, Any]:
 
 
 def recorded_value(notebook: str, key: str) -> Any:
-    """A value recorded by another notebook in this build (``records_dir()/<notebook>.json``).
+    """A value recorded by another notebook: from ``records_dir()`` (this build or run) if it
+    holds that notebook's record, else from the default build's ``build/records``.
 
     Raises
     ------
     FileNotFoundError
-        When that notebook has not been executed in this build, naming the command that does it.
+        When that notebook has not been executed, naming the command that does it.
     """
-    path = records_dir() / f"{notebook}.json"
-    if not path.exists():
+    places = [
+        records_dir() / f"{notebook}.json",
+        REPO_ROOT / "build" / "records" / f"{notebook}.json",
+    ]
+    path = next((p for p in places if p.exists()), None)
+    if path is None:
         raise FileNotFoundError(
-            f"no record of notebook {notebook!r} at {path}: execute it first "
-            f"(make notebooks, or make run NB={notebook})"
+            f"no record of notebook {notebook!r} in {places[0].parent} or {places[1].parent}: "
+            f"execute it first (make notebooks)"
         )
     values = load(path)["values"]
     if key not in values:

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechlib.records import Recorder, compare, load, update_references
+from mechlib import records
+from mechlib.records import Recorder, compare, load, recorded_value, update_references
 
 
 def test_recorder_roundtrip_and_deterministic_bytes(tmp_path: Path) -> None:
@@ -55,3 +56,17 @@ def test_update_references_reports_changes(tmp_path: Path) -> None:
     rec2.save(records)
     lines = update_references(records, refs)
     assert lines[0].startswith("nb: v: got 2.0") and json.loads((refs / "nb.json").read_text())
+
+
+def test_a_value_recorded_by_another_notebook_is_found_or_named(
+    tmp_path: Path, monkeypatch
+) -> None:
+    rec = Recorder("upstream")
+    rec.value("geometry", [1.0, 2.0])
+    rec.save(tmp_path)
+    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path))
+    assert recorded_value("upstream", "geometry") == [1.0, 2.0]
+    with pytest.raises(KeyError, match="recorded no value 'size'"):
+        recorded_value("upstream", "size")
+    with pytest.raises(FileNotFoundError, match=r"no record of notebook 'nowhere'.*make notebooks"):
+        recorded_value("nowhere", "geometry")
