@@ -4,9 +4,9 @@ import concurrent.futures as cf
 
 import numpy as np
 import pytest
+from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import experiments as ex
-from tests.test_hexflex import SMALL
 
 SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
 
