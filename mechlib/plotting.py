@@ -455,3 +455,25 @@ def hexflex_stage_motions(model, poses: np.ndarray, labels: Sequence[str]) -> pl
         hexflex_deformed(model.planar, model.midplane_displacements(f), label, ax=ax)
     fig.suptitle("Fig 3: the six stage motions, each from the inverse model")
     return fig
+
+
+def tilt_ratio_sample(
+    radius: np.ndarray, ratio: np.ndarray, target: float, fitted: tuple[float, float]
+) -> plt.Figure:
+    """θx/z over sampled designs against the links' radius, with the rigid-support bound 2/ρ.
+
+    ``radius`` [mm] and ``ratio`` [rad/m] per design; ``target`` is Eq 8's ratio; ``fitted``
+    is (radius, ratio) of the identified design.
+    """
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    rho = np.linspace(0.95 * radius.min(), 1.05 * radius.max(), 100)
+    ax.plot(rho, 2e3 / rho, "k-", label="ideal: stage on three point supports, 2/ρ")
+    ax.axhline(target, color="C3", ls="--", label="Eq 8")
+    ax.scatter(radius, ratio, s=14, color="C0", label="sampled designs (shell)")
+    ax.plot(*fitted, "C1*", ms=14, label="identified design (Q2)")
+    ax.set_xlabel("radius of the links ρ = arm_end [mm]")
+    ax.set_ylabel("θx←T1D2 / z←T1D2 [rad/m]")
+    ax.set_ylim(0, 1.1 * max(2e3 / rho.min(), target))
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    return fig

@@ -44,6 +44,17 @@ def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> No
     assert ex.run_experiments(other, d, cache_dir=tmp_path, progress=False).any()
 
 
+def test_the_cache_is_keyed_by_the_model_code(tmp_path, monkeypatch) -> None:
+    d = _design(5)
+    ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)
+    (cached,) = tmp_path.glob("*.npy")
+    np.save(cached, np.zeros((5, 6)))
+    # the same spec and forces after a change to the mesher or solver: the stale file is ignored
+    monkeypatch.setattr(ex, "model_code_fingerprint", lambda: "changed-code")
+    assert ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False).all()
+    assert len(list(tmp_path.glob("*.npy"))) == 2
+
+
 def test_dask_local_cluster_gives_identical_results() -> None:
     distributed = pytest.importorskip("distributed")
     d = _design(600)

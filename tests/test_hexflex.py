@@ -6,6 +6,7 @@ import pytest
 from mechlib import published as pub
 from mechlib.hexflex import beamcheck, checks
 from mechlib.hexflex import geometry as geo
+from mechlib.hexflex import identify as ident
 from mechlib.hexflex import mesh as ms
 from mechlib.hexflex.model import HexFlexModel
 from mechlib.hexflex.pose import fit_operator
@@ -60,6 +61,27 @@ def test_symmetry_completed_mesh_has_merged_cut_lines_and_three_fold_symmetry() 
     assert dist.max() < 1e-9
 
 
+@pytest.mark.parametrize(("size", "across"), [(1.0, 2), (0.5, 2), (0.3, 4), (0.2, 6)])
+def test_flexures_are_structured_with_an_even_element_count_across(size, across) -> None:
+    sector = ms.sector_mesh(SMALL, size)
+    parts = geo.classify(sector.nodes[sector.quads].mean(axis=1), SMALL)
+    ((r0, r1, s0, s1),) = SMALL.rectangles()["beam"]
+    beam = sector.quads[parts == geo.PARTS.index("beam")]
+    x, y = sector.nodes[beam, 0], sector.nodes[beam, 1]  # leg T1: (x, y) = (s, r)
+    # axis-aligned rectangles on a grid: `across` columns over the width, rows along the length
+    assert np.ptp(np.sort(x, axis=1)[:, :2], axis=1).max() < 1e-9
+    columns = np.unique(np.round(x, 9))
+    np.testing.assert_allclose(columns, np.linspace(s0, s1, across + 1), atol=1e-9)
+    rows = np.unique(np.round(y, 9))
+    np.testing.assert_allclose(rows[[0, -1]], [r0, r1], atol=1e-9)
+    # graded along the beam: short elements at both joints, long ones mid-way
+    step = np.diff(rows)
+    end = ms.BEAM_ASPECT * (s1 - s0) / across
+    assert max(step[0], step[-1]) <= 1.2 * end
+    assert step.max() <= 1.2 * ms.MID_WIDTHS * (s1 - s0)
+    assert len(beam) == across * (len(rows) - 1)
+
+
 def test_model_invariants_symmetry_zero_pattern_reciprocity(shell_model: HexFlexModel) -> None:
     c = shell_model.compliance()
     assert checks.symmetry_defect(c) < 1e-6
@@ -106,6 +128,23 @@ def test_bad_input_gets_clear_errors(shell_model: HexFlexModel) -> None:
         shell_model.poses(np.full((1, 6), 60.0))
     with pytest.raises(ValueError, match="element must be one of"):
         HexFlexModel(SMALL, element="q1")
+    with pytest.raises(ValueError, match=r"coarsening must be"):
+        HexFlexModel(SMALL, element="shell", mesh_size=1.0, coarsening=0.5)
+    with pytest.raises(ValueError, match=r"n must be"):
+        ident.design_space_sample(SMALL, 0, seed=1)
+    with pytest.raises(ValueError, match="design-space dimension must be one of"):
+        ident.design_space_sample(SMALL, 2, seed=1, space={"colour": (1.0, 2.0)})
+    with pytest.raises(ValueError, match="range of thickness must satisfy 0 < low < high"):
+        ident.design_space_sample(SMALL, 2, seed=1, space={"thickness": (2.0, 1.0)})
+
+
+def test_design_space_sample_is_seeded_and_counts_rejected_designs() -> None:
+    space = {"thickness": (0.5, 1.0), "link_length": (6.0, 40.0)}  # long links overlap the legs
+    a = ident.design_space_sample(SMALL, 4, seed=3, space=space, mesh_fraction=1.0)
+    b = ident.design_space_sample(SMALL, 4, seed=3, space=space, mesh_fraction=1.0)
+    np.testing.assert_array_equal(a.achieved, b.achieved)
+    assert a.n_invalid > 0 and len(a.dimensions) + a.n_invalid == 4
+    np.testing.assert_allclose(a.tilt_ratio, a.achieved[:, 2] / a.achieved[:, 1])
 
 
 def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() -> None:

@@ -31,6 +31,8 @@ KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 _CACHE_VERSION = 1
+#: Modules whose source enters the cache key (see :func:`model_code_fingerprint`).
+_MODEL_SOURCES: tuple[str, ...] = ("geometry.py", "mesh.py", "model.py", "pose.py")
 
 
 @dataclass(frozen=True)
@@ -93,9 +95,22 @@ def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndar
     return np.array([model.poses_nonlinear(f, steps=steps)[0] for f in forces])
 
 
+@lru_cache(maxsize=1)
+def model_code_fingerprint() -> str:
+    """Digest of the sources that define a model's results (geometry, mesh, FE model, pose fit).
+
+    Part of every cache key, so that a change to the mesher or the solver can never return
+    results computed by the old code.
+    """
+    h = hashlib.sha256()
+    for name in _MODEL_SOURCES:
+        h.update((Path(__file__).parent / name).read_bytes())
+    return h.hexdigest()[:16]
+
+
 def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
     h = hashlib.sha256()
-    h.update(f"{_CACHE_VERSION}|{spec.key()}|{kind}|{steps}|".encode())
+    h.update(f"{_CACHE_VERSION}|{model_code_fingerprint()}|{spec.key()}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
     return h.hexdigest()[:32]
 

@@ -37,6 +37,18 @@ FIT_BOUNDS: dict[str, tuple[float, float]] = {
 }
 
 
+#: Ranges [mm] of the design-space sample (:func:`design_space_sample`), wider than the fit's
+#: and including the links' radius ``arm_end``, the lever arm of the out-of-plane tilt.
+DESIGN_SPACE: dict[str, tuple[float, float]] = {
+    "thickness": (0.3, 3.0),
+    "beam_width": (0.3, 3.0),
+    "link_width": (0.3, 1.5),
+    "beam_length": (10.0, 40.0),
+    "link_length": (3.0, 15.0),
+    "arm_end": (10.5, 16.0),
+}
+
+
 def target_values(compliance: np.ndarray) -> np.ndarray:
     """The four magnitudes of :data:`TARGET_ENTRIES` from a 6 × 6 compliance."""
     c = np.asarray(compliance, dtype=float)
@@ -109,3 +121,72 @@ def identify(
 
 class _BudgetSpent(Exception):
     """Raised inside the residual when the evaluation budget is spent."""
+
+
+@dataclass(frozen=True)
+class DesignSample:
+    """Result of :func:`design_space_sample`.
+
+    ``dimensions`` (n, k) [mm] of the valid designs (columns ``names``), their ``achieved``
+    magnitudes (n, 4) in the order of :data:`TARGET_LABELS`, and ``n_invalid``, the drawn
+    designs the geometry rejected (overlapping legs).
+    """
+
+    names: tuple[str, ...]
+    dimensions: np.ndarray
+    achieved: np.ndarray
+    n_invalid: int
+
+    @property
+    def tilt_ratio(self) -> np.ndarray:
+        """θx←T1D2 / z←T1D2 of every design [µrad/µm = rad/m]."""
+        return self.achieved[:, 2] / self.achieved[:, 1]
+
+
+def design_space_sample(
+    start: HexFlexGeometry,
+    n: int,
+    seed: int,
+    space: dict[str, tuple[float, float]] | None = None,
+    element: str = "shell",
+    mesh_fraction: float = 1.0,
+) -> DesignSample:
+    """Compliance magnitudes over a seeded Latin hypercube of designs (log-uniform dimensions).
+
+    Every other dimension is that of ``start``. Designs the geometry rejects are skipped and
+    counted. The default element is the shell (about a second per design; within a few % of
+    Q2, see the hexflex notebook's convergence table).
+
+    Raises
+    ------
+    ValueError
+        If ``n`` is outside [1, 2000], a range is empty or not positive, or a name is not a
+        dimension.
+    """
+    from scipy.stats import qmc
+
+    space = DESIGN_SPACE if space is None else space
+    n = check_int("n", n, low=1, high=2000)
+    names = tuple(space)
+    dims = {f.name for f in fields(HexFlexGeometry)}
+    for name, (lo, hi) in space.items():
+        check_choice("design-space dimension", name, tuple(sorted(dims)))
+        if not 0 < lo < hi:
+            raise ValueError(
+                f"design-space range of {name} must satisfy 0 < low < high, got {(lo, hi)}"
+            )
+    lo = np.log([space[k][0] for k in names])
+    hi = np.log([space[k][1] for k in names])
+    draws = np.exp(qmc.scale(qmc.LatinHypercube(d=len(names), seed=seed).random(n), lo, hi))
+    kept, achieved, invalid = [], [], 0
+    for x in draws:
+        try:
+            g = start.replace(**dict(zip(names, x, strict=True)))
+        except ValueError:
+            invalid += 1
+            continue
+        size = mesh_fraction * min(g.beam_width, g.link_width)
+        model = HexFlexModel(g, element=element, mesh_size=size)
+        achieved.append(target_values(model.compliance()))
+        kept.append(x)
+    return DesignSample(names, np.array(kept), np.array(achieved), invalid)

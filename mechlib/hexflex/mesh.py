@@ -17,6 +17,14 @@ from mechlib.params import check_float
 
 #: Element growth from the beams to the stage and tabs.
 COARSENING = 4.0
+#: Length-to-width ratio of the structured elements at the ends of the beams and links.
+BEAM_ASPECT = 2.0
+#: Length of the structured elements mid-way along a flexure, in flexure widths: the joints at
+#: the ends carry the stress concentrations, the prismatic middle is smooth.
+MID_WIDTHS = 2.0
+#: Elements per (length / middle size) of a graded flexure: gmsh's "Bump" spacing with end/middle
+#: ratio c puts ≈ 1.6–2.2 × length / n mid-way for c in [0.05, 0.2] (measured).
+BUMP_FACTOR = 2.2
 #: Nodes closer than this fraction of the element size are merged.
 MERGE_TOL = 1e-6
 
@@ -30,30 +38,33 @@ class PlanarMesh:
 
 
 def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING) -> PlanarMesh:
-    """All-quad mesh of the 30°–90° sector.
+    """All-quad mesh of the 30°–90° sector: structured in the flexures, free elsewhere.
 
-    Elements are of size ``size`` [mm] at the corners of the beams and links and grow to
-    ``coarsening * size`` on the stage and the tabs (never larger than ``COARSE_CAP`` times the
-    thickness).
+    Every beam and link is a structured grid with an even number of elements across its width
+    (at most ``size`` [mm] wide, at least two); along it the elements are ``BEAM_ASPECT`` times
+    longer than wide at both ends and grow toward ``MID_WIDTHS`` flexure widths mid-way. The
+    stage, arm and tab are meshed freely with elements growing from ``size`` at the flexures'
+    corners to ``coarsening * size``.
 
     Raises
     ------
     ValueError
-        If ``size`` is larger than the narrowest beam (at least one element across each beam
-        is required) or not positive.
+        If ``size`` is larger than the narrowest beam or not positive.
     """
     narrowest = min(g.beam_width, g.link_width)
     size = check_float("mesh_size [mm]", size, low=0.0, high=narrowest, low_open=True)
     import gmsh
 
+    rects = g.rectangles()
+    flexures = [(r, "beam") for r in rects["beam"]] + [(r, "link") for r in rects["link"]]
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("hexflex_sector")
         occ = gmsh.model.occ
         tags, fine = [], []
-        for part, rects in g.rectangles().items():
-            for r0, r1, s0, s1 in rects:  # leg T1: global (x, y) = (s, r)
+        for part, part_rects in rects.items():
+            for r0, r1, s0, s1 in part_rects:  # leg T1: global (x, y) = (s, r)
                 tags.append((2, occ.addRectangle(s0, r0, 0.0, s1 - s0, r1 - r0)))
                 if part in ("beam", "link"):
                     fine += [(s0, r0), (s1, r0), (s0, r1), (s1, r1)]
@@ -61,19 +72,43 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
         pts = [occ.addPoint(0, 0, 0), occ.addPoint(*mid, 0), occ.addPoint(0, g.stage_radius, 0)]
         lines = [occ.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
         tags.append((2, occ.addPlaneSurface([occ.addCurveLoop(lines)])))
-        occ.fuse(tags[:1], tags[1:])
+        occ.fragment(tags[:1], tags[1:])
         occ.synchronize()
         occ.removeAllDuplicates()
         occ.synchronize()
         surfaces = gmsh.model.getEntities(2)
         gmsh.model.addPhysicalGroup(2, [t for _, t in surfaces])
+        # sizes handed to gmsh are doubled: the all-quad subdivision below halves every element
+        for dim, tag in surfaces:
+            s_c, r_c, _ = occ.getCenterOfMass(dim, tag)
+            for (r0, r1, s0, s1), kind in flexures:
+                if not (r0 < r_c < r1 and s0 < s_c < s1):
+                    continue
+                width, length = (s1 - s0, r1 - r0) if kind == "beam" else (r1 - r0, s1 - s0)
+                across = int(np.ceil(width / (2 * size) - 1e-9))
+                end, middle = _along_sizes(width, across)
+                along = int(np.ceil(length / end - 1e-9))
+                bump = end / middle < 1.0 and length > 4 * middle
+                if bump:  # graded: `end` at both ends, about `middle` mid-way
+                    along = int(np.ceil(BUMP_FACTOR * length / middle))
+                for _, curve in gmsh.model.getBoundary([(dim, tag)], oriented=False):
+                    x0, y0, _, x1, y1, _ = gmsh.model.getBoundingBox(1, curve)
+                    if ((y1 - y0) > (x1 - x0)) == (kind == "beam"):  # runs along the flexure
+                        if bump:
+                            gmsh.model.mesh.setTransfiniteCurve(
+                                curve, along + 1, "Bump", end / middle
+                            )
+                        else:
+                            gmsh.model.mesh.setTransfiniteCurve(curve, along + 1)
+                    else:
+                        gmsh.model.mesh.setTransfiniteCurve(curve, across + 1)
+                gmsh.model.mesh.setTransfiniteSurface(tag)
         coarse = max(size, coarsening * size)
         fine_xy = np.asarray(fine)
         for dim_tag in gmsh.model.getEntities(0):
             xyz = gmsh.model.getValue(0, dim_tag[1], [])
             near = np.min(np.hypot(*(fine_xy - xyz[:2]).T)) < 1e-6 * g.ground_radius
             gmsh.model.mesh.setSize([dim_tag], 2 * (size if near else coarse))
-        # sizes are doubled because the all-quad subdivision below halves every element
         gmsh.option.setNumber("Mesh.MeshSizeMax", 2 * coarse)
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 1)
         gmsh.option.setNumber("Mesh.Algorithm", 8)
@@ -95,6 +130,11 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
     remap = np.full(len(xy), -1)
     remap[used] = np.arange(len(used))
     return _orient(PlanarMesh(xy[used], remap[quads]))
+
+
+def _along_sizes(width: float, across: int) -> tuple[float, float]:
+    """gmsh element lengths (before the subdivision halves them) at the ends and mid-way."""
+    return 2 * BEAM_ASPECT * width / (2 * across), 2 * MID_WIDTHS * width
 
 
 def signed_areas(m: PlanarMesh) -> np.ndarray:
