@@ -9,7 +9,12 @@ VENV        := .venv
 PY          := $(VENV)/bin/python
 UV          := $(VENV)/bin/uv
 STAMP       := $(VENV)/.lock-stamp
-BUILD       := build
+# PROFILE selects the notebooks' parameters: "ci" (their defaults, what `make test` runs and
+# tests/references records) or a folder notebooks/profiles/<name>/ of papermill YAML files, one
+# per notebook that differs (e.g. `make book PROFILE=full`); each profile builds in its own folder.
+PROFILE     ?= ci
+BUILD       := build$(if $(filter-out ci,$(PROFILE)),/$(PROFILE))
+PROFILE_DIR := notebooks/profiles/$(PROFILE)
 NBS         := $(sort $(wildcard notebooks/*.ipynb))
 NB_NAMES    := $(notdir $(basename $(NBS)))
 MECHLIB_SRC := $(shell find mechlib -name '*.py' 2>/dev/null)
@@ -21,6 +26,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
+	@echo "                 PROFILE=full: the full-size runs of notebooks/profiles/full/ (hours)"
 	@echo "make test        unit tests + every notebook + reference comparison + book build"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
@@ -43,11 +49,12 @@ lock:
 # --- notebooks --------------------------------------------------------------------------------
 # An executed notebook depends on its source, on mechlib and on the environment: nothing else
 # changes its output, so an unchanged notebook is not re-executed.
-$(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP)
+$(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard $(PROFILE_DIR)/*.yaml)
+	@test "$(PROFILE)" = ci || test -d $(PROFILE_DIR) || { echo "no profile $(PROFILE_DIR)"; exit 2; }
 	@mkdir -p $(BUILD)/executed $(BUILD)/records
-	@echo "executing $<"
+	@echo "executing $< (profile $(PROFILE))"
 	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(VENV)/bin/papermill -k python3 --cwd notebooks \
-	  --no-progress-bar $< $@.tmp
+	  --no-progress-bar $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml) $< $@.tmp
 	mv $@.tmp $@
 
 # the DOE chapter runs on the geometry that the HexFlex model notebook identifies (its record)
@@ -56,7 +63,7 @@ $(BUILD)/executed/virtual_experiments.ipynb: $(BUILD)/executed/hexflex_model.ipy
 notebooks: $(EXECUTED)
 
 book: $(EXECUTED)
-	$(PY) -m mechlib.bookbuild --executed $(BUILD)/executed --book book
+	$(PY) -m mechlib.bookbuild --executed $(BUILD)/executed --records $(BUILD)/records --book book
 	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet
 	@echo "Book: $(abspath book/_build/html/index.html)"
 
@@ -68,6 +75,7 @@ check-records: $(EXECUTED)
 	$(VENV)/bin/pytest -q tests/test_records.py
 
 test: $(STAMP)
+	@test "$(PROFILE)" = ci || { echo "make test runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
 	$(VENV)/bin/ruff check mechlib tests
 	$(MAKE) --no-print-directory unit
 	$(MAKE) --no-print-directory check-records
@@ -81,6 +89,7 @@ run: $(STAMP)
 	$(PY) -m mechlib.runs --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs -- $(ARGS)
 
 references: $(EXECUTED)
+	@test "$(PROFILE)" = ci || { echo "tests/references hold the ci profile; got PROFILE=$(PROFILE)"; exit 2; }
 	$(PY) -m mechlib.records update --records $(BUILD)/records --references tests/references
 
 bench: $(STAMP)
