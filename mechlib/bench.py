@@ -96,11 +96,11 @@ def factorisation_orderings() -> dict[str, float]:
     """Time SuperLU with the model's ordering and with SciPy's default on one stiffness."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.model import HexFlexModel, _factorise
+    from mechlib.hexflex.model import HexFlexModel, factorise
 
     matrix = HexFlexModel(_bench_geometry()).assembled_stiffness().tocsc()
     t0 = time.perf_counter()
-    ours = _factorise(matrix)
+    ours = factorise(matrix)
     t1 = time.perf_counter()
     default = sla.splu(matrix)
     t2 = time.perf_counter()

@@ -167,3 +167,36 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
         model.solve_nonlinear(f, steps=0)
     with pytest.raises(ValueError, match="element must be 'q2'"):
         HexFlexModel(SMALL, element="shell", mesh_size=1.0).solve_nonlinear(f)
+
+
+def _row(element: str, fraction: float, coarse: float, mags: list[float]) -> dict:
+    c = np.zeros((6, 6))
+    for (i, j, sign), v in zip(ident.TARGET_ENTRIES, mags, strict=True):
+        c[i, j] = sign * v
+    return {"element": element, "fraction": fraction, "coarse_widths": coarse, "compliance": c}
+
+
+def test_convergence_changes_are_measured_between_the_right_meshes() -> None:
+    rows = [
+        _row("q2", 0.25, 4.0, [101.0, 10.0, 10.0, 10.0]),
+        _row("q2", 0.5, 4.0, [100.0, 10.0, 10.0, 10.0]),  # the chosen mesh
+        _row("q2", 1 / 6, 4.0, [101.0, 10.0, 10.05, 10.0]),
+        _row("q2", 0.5, 2.0, [100.0, 10.2, 10.0, 10.0]),  # free region refined
+        _row("shell", 1 / 6, 4.0, [101.0, 10.0, 10.05, 10.3]),
+        _row("shell", 0.5, 4.0, [90.0, 10.0, 10.0, 10.0]),
+    ]
+    got = ident.convergence_changes(rows, 0.5, 4.0)
+    np.testing.assert_allclose(got["fractions"], [0.5, 0.25, 1 / 6])
+    np.testing.assert_allclose(got["steps"], [0.01, 0.005])
+    assert got["next"] == pytest.approx(0.01)
+    assert got["finest"] == pytest.approx(1 / 101)  # x: 100 against 101
+    assert got["coarse_region"] == pytest.approx(0.02)
+    assert got["shell_vs_q2"] == pytest.approx(0.03)
+    assert np.isnan(ident.convergence_changes(rows, 1 / 6, 4.0)["next"])
+    with pytest.raises(ValueError, match="chosen_fraction must be one of the Q2 fractions"):
+        ident.convergence_changes(rows, 0.3, 4.0)
+
+
+def test_fitted_dimensions_on_their_bounds_are_named() -> None:
+    g = SMALL.replace(beam_length=ident.FIT_BOUNDS["beam_length"][0] * 1.005)
+    assert ident.at_bounds(g, ["beam_length", "thickness"]) == ["beam_length"]

@@ -190,3 +190,83 @@ def design_space_sample(
         achieved.append(target_values(model.compliance()))
         kept.append(x)
     return DesignSample(names, np.array(kept), np.array(achieved), invalid)
+
+
+def at_bounds(geometry: HexFlexGeometry, free: Sequence[str], rtol: float = 0.01) -> list[str]:
+    """The ``free`` dimensions of ``geometry`` within ``rtol`` of one of their ``FIT_BOUNDS``."""
+    return [
+        n for n in free if min(abs(getattr(geometry, n) / b - 1.0) for b in FIT_BOUNDS[n]) < rtol
+    ]
+
+
+def convergence_changes(
+    rows: list[dict[str, object]], chosen_fraction: float, coarse_widths: float
+) -> dict[str, object]:
+    """Largest relative changes of the four target magnitudes in a mesh-convergence study.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Output of :func:`mechlib.hexflex.model.convergence` (Q2 rows over flexure fractions at
+        ``coarse_widths``; optionally Q2 rows with another ``coarse_widths`` and shell rows).
+    chosen_fraction : float
+        The flexure fraction of the model in use; must be one of the Q2 fractions.
+    coarse_widths : float
+        Largest element of the flexure-refinement series, in narrowest beam widths.
+
+    Returns
+    -------
+    dict
+        ``fractions`` (coarse to fine), ``steps`` (change at each refinement), ``next`` (chosen →
+        next finer; NaN if the chosen mesh is the finest), ``finest`` (chosen → finest),
+        ``coarse_region`` (chosen → same flexures with another free-region size; NaN if absent),
+        ``shell_vs_q2`` (on the finest flexure mesh; NaN if no shell row).
+
+    Raises
+    ------
+    ValueError
+        If the chosen fraction is not in the Q2 series.
+    """
+
+    def mags(r: dict[str, object]) -> np.ndarray:
+        return target_values(np.asarray(r["compliance"]))
+
+    def change(a: np.ndarray, b: np.ndarray) -> float:
+        return float(np.max(np.abs(a / b - 1.0)))
+
+    series = sorted(
+        (r for r in rows if r["element"] == "q2" and r["coarse_widths"] == coarse_widths),
+        key=lambda r: -float(r["fraction"]),
+    )
+    fractions = [float(r["fraction"]) for r in series]
+    match = [i for i, f in enumerate(fractions) if np.isclose(f, chosen_fraction, rtol=1e-9)]
+    if not match:
+        raise ValueError(
+            f"chosen_fraction must be one of the Q2 fractions {fractions}, got {chosen_fraction}"
+        )
+    k = match[0]
+    values = [mags(r) for r in series]
+    steps = [change(values[i + 1], values[i]) for i in range(len(values) - 1)]
+    others = [
+        r
+        for r in rows
+        if r["element"] == "q2"
+        and r["coarse_widths"] != coarse_widths
+        and np.isclose(float(r["fraction"]), chosen_fraction, rtol=1e-9)
+    ]
+    shells = [
+        r
+        for r in rows
+        if r["element"] == "shell"
+        and r["coarse_widths"] == coarse_widths
+        and np.isclose(float(r["fraction"]), fractions[-1], rtol=1e-9)
+    ]
+    nan = float("nan")
+    return {
+        "fractions": fractions,
+        "steps": steps,
+        "next": steps[k] if k < len(steps) else nan,
+        "finest": change(values[k], values[-1]),
+        "coarse_region": change(mags(others[0]), values[k]) if others else nan,
+        "shell_vs_q2": change(mags(shells[0]), values[-1]) if shells else nan,
+    }

@@ -111,7 +111,7 @@ class HexFlexModel:
         t2 = time.perf_counter()
         self._matrix = self._assemble()
         t3 = time.perf_counter()
-        self._lu = _factorise(self._matrix)
+        self._lu = factorise(self._matrix)
         t4 = time.perf_counter()
         self.timings.update(mesh=t1 - t0, setup=t2 - t1, assembly=t3 - t2, factorisation=t4 - t3)
         self._loads = self._unit_loads()
@@ -400,7 +400,7 @@ class HexFlexModel:
                     du = self._lu.solve(res)
                 else:
                     tangent = ev.eval_tangent_matrix(u).copy()
-                    du = _factorise(tangent).solve(res)
+                    du = factorise(tangent).solve(res)
                 u = u - du
                 if np.linalg.norm(du) <= INCREMENT_TOL * np.linalg.norm(u):
                     used.append(it + 1)  # at the round-off floor of the residual
@@ -538,7 +538,7 @@ def convergence(
     return rows
 
 
-def _factorise(matrix):
+def factorise(matrix):
     """Sparse LU of a symmetric stiffness or tangent matrix.
 
     A minimum-degree ordering of A + Aᵀ with symmetric pivoting suits FE matrices: on a 172k-DOF
