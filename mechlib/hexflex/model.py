@@ -10,10 +10,17 @@ Units: mm, N, MPa (N/mm²). The stiffness matrix is assembled and factorised onc
 a load case is one back-substitution, and the 6 × 6 compliance (pose per unit actuator force,
 µm/N and µrad/N, columns in the order of Eq 4) comes from six of them.
 
-Geometric non-linearity (Q2 only): total-Lagrangian neo-Hookean solid (``dw_tl_he_neohook`` +
-``dw_tl_bulk_penalty``, shear and bulk moduli from E and ν so that its small-strain limit is the
-linear model exactly) solved by Newton's method with load steps. The first iteration from the
-undeformed state reuses the linear factorisation (the tangent at u = 0 *is* the linear stiffness).
+Geometric non-linearity (Q2 only): total-Lagrangian Saint Venant–Kirchhoff solid — the linear
+model's own elasticity tensor between Green–Lagrange strain and second Piola–Kirchhoff stress,
+i.e. large displacements and rotations with a linear-elastic material, which is what a
+"geometrically non-linear" analysis of a metal flexure means — solved by Newton's method with load
+steps. The first iteration from the undeformed state reuses the linear factorisation (the
+tangent at u = 0 *is* the linear stiffness).
+
+SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
+tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
+``_register_svk_term`` adds ``dw_tl_he_svk_consistent``, the same residual with the consistent
+tangent; ``tests/test_hexflex.py`` checks it against finite differences of the residual.
 """
 
 from __future__ import annotations
@@ -313,18 +320,22 @@ class HexFlexModel:
         return (self._fit @ u[self._stage_idx]).T
 
     def _nonlinear_evaluator(self):
-        """SfePy evaluator of the TL neo-Hookean internal forces on the same field and BCs."""
+        """SfePy evaluator of the TL Saint Venant–Kirchhoff internal forces (same field, BCs)."""
         if self._nl_evaluator is None:
             from sfepy.discrete import Equation, Equations, Material, Problem
+            from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
             from sfepy.terms import Term
 
-            e, nu = self.young, self.poisson
-            mat = Material("s", mu=e / (2 * (1 + nu)), K=e / (3 * (1 - 2 * nu)))
-            i = _integral(QUAD_ORDER)
-            kw = dict(s=mat, v=self._v, u=self._u)
-            iso = Term.new("dw_tl_he_neohook(s.mu, v, u)", i, self._omega, **kw)
-            vol = Term.new("dw_tl_bulk_penalty(s.K, v, u)", i, self._omega, **kw)
-            pb = Problem("hexflex_tl", equations=Equations([Equation("balance", iso + vol)]))
+            mat = Material("s", D=stiffness_from_youngpoisson(3, self.young, self.poisson))
+            term = Term.new(
+                f"{_register_svk_term()}(s.D, v, u)",
+                _integral(QUAD_ORDER),
+                self._omega,
+                s=mat,
+                v=self._v,
+                u=self._u,
+            )
+            pb = Problem("hexflex_tl", equations=Equations([Equation("balance", term)]))
             pb.set_bcs(ebcs=self._pb.ebcs)
             pb.time_update(create_matrix=True)
             pb.get_variables().init_state()
@@ -552,3 +563,26 @@ def _integral(order: int):
     from sfepy.discrete import Integral
 
     return Integral("i", order=check_int("order", order, low=1))
+
+
+def _register_svk_term() -> str:
+    """Register (once) and name SfePy's TL Saint Venant–Kirchhoff term with a consistent tangent.
+
+    The stress is SfePy's own (``S = D : E`` with the Voigt-shear convention of its Green strain).
+    SfePy's element tangent already accounts for that convention, so the tangent modulus is ``D``
+    itself; the stock term doubles its shear rows again (see the module docstring).
+    """
+    from sfepy.terms import term_table
+    from sfepy.terms.terms_hyperelastic_tl import SaintVenantKirchhoffTLTerm
+
+    name = "dw_tl_he_svk_consistent"
+    if name not in term_table:
+
+        class ConsistentSVKTerm(SaintVenantKirchhoffTLTerm):
+            def tan_mod_function(self, out, mat, *fargs, **kwargs):
+                out[:] = mat
+                return out
+
+        ConsistentSVKTerm.name = name
+        term_table[name] = ConsistentSVKTerm
+    return name
