@@ -9,11 +9,18 @@
   all 1042.
 - SuperLU ordering on the same stiffness: the minimum-degree ordering of A + Aᵀ with symmetric
   pivoting that the model uses, against SciPy's default column ordering (COLAMD).
+- The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
+  part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
+  per run in-process and on a two-process pool, and projected to the CI and full profiles' run
+  counts. The executed notebooks' own papermill durations are printed when a build holds them.
 """
 
 from __future__ import annotations
 
+import json
 import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
 
 import numpy as np
 
@@ -29,6 +36,10 @@ N_SELECT = 18
 N_LOAD_CASES = 1042
 #: Plain SfePy solves actually timed (each costs a full assembly and factorisation).
 N_PLAIN_TIMED = 3
+#: Non-linear validation runs timed in-process, and on the two-process pool.
+N_NONLINEAR_SERIAL = 2
+N_NONLINEAR_POOL = 4
+REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
 def _bench_geometry():
@@ -113,6 +124,95 @@ def factorisation_orderings() -> dict[str, float]:
     }
 
 
+def _chapter_spec():
+    """The FE model of the DOE chapter: the geometry the hexflex notebook identified when a build
+    holds its record, else the bench geometry (the second item says which)."""
+    from mechlib.hexflex import experiments as ex
+    from mechlib.hexflex.geometry import HexFlexGeometry
+    from mechlib.hexflex.model import DEFAULT_MESH_FRACTION
+    from mechlib.records import recorded_value
+
+    try:
+        g, source = HexFlexGeometry(*recorded_value("hexflex_model", "geometry")), "identified"
+    except (FileNotFoundError, KeyError):
+        g, source = _bench_geometry(), "bench"
+    return ex.ModelSpec(
+        g, mesh_size=DEFAULT_MESH_FRACTION * min(g.beam_width, g.link_width)
+    ), source
+
+
+def nonlinear_run_counts() -> dict[str, int]:
+    """``nonlinear_runs`` of the ci profile (the notebook's default) and of the full profile."""
+    import yaml
+
+    nb = REPO_ROOT / "notebooks" / "virtual_experiments.ipynb"
+    cell = next(
+        c
+        for c in json.loads(nb.read_text())["cells"]
+        if "parameters" in c.get("metadata", {}).get("tags", [])
+    )
+    ci = next(
+        line for line in "".join(cell["source"]).splitlines() if line.startswith("nonlinear_runs")
+    )
+    full = REPO_ROOT / "notebooks" / "profiles" / "full" / "virtual_experiments.yaml"
+    return {
+        "ci": int(ci.split("=")[1].split("#")[0]),
+        "full": int(yaml.safe_load(full.read_text())["nonlinear_runs"]),
+    }
+
+
+def chapter_timings() -> dict[str, float | str]:
+    """Cold wall times of the DOE chapter's FE work (no cache), measured and projected."""
+    from mechlib.hexflex import experiments as ex
+
+    counts = nonlinear_run_counts()
+
+    spec, source = _chapter_spec()
+    validation = np.random.default_rng(2010).uniform(-1.0, 1.0, (1000, 6))
+    t0 = time.perf_counter()
+    model = spec.build()
+    t1 = time.perf_counter()
+    for design in (pub.TABLE2_DESIGN, pub.TABLE4_DESIGN, validation):
+        ex.run_experiments(spec, design, executor=None, cache_dir=None, progress=False)
+    t2 = time.perf_counter()
+    iterations = [model.poses_nonlinear(f)[1][0] for f in validation[:N_NONLINEAR_SERIAL]]
+    t3 = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        ex.run_experiments(
+            spec, validation[:N_NONLINEAR_POOL], kind="nonlinear", executor=pool, progress=False
+        )
+    t4 = time.perf_counter()
+    pool_per_run = (t4 - t3) / N_NONLINEAR_POOL
+    return {
+        "geometry": source,
+        "n_dofs": model.n_dofs,
+        "build_s": t1 - t0,
+        "linear_s": t2 - t1,
+        "nonlinear_per_run_s": (t3 - t2) / N_NONLINEAR_SERIAL,
+        "newton_iterations": float(np.mean(iterations)),
+        "pool_per_run_s": pool_per_run,
+        **{
+            f"{name}_nonlinear_s": n * (t3 - t2) / N_NONLINEAR_SERIAL
+            if name == "ci"
+            else n * pool_per_run
+            for name, n in counts.items()
+        },
+        **{f"{name}_runs": n for name, n in counts.items()},
+    }
+
+
+def executed_durations() -> dict[str, dict[str, float]]:
+    """Papermill durations [s] of the executed notebooks, per build profile that has them."""
+    out: dict[str, dict[str, float]] = {}
+    for folder in sorted(REPO_ROOT.glob("build/**/executed")):
+        profile = folder.parent.name if folder.parent.name != "build" else "ci"
+        for nb in sorted(folder.glob("*.ipynb")):
+            meta = json.loads(nb.read_text()).get("metadata", {}).get("papermill", {})
+            if meta.get("duration") is not None:
+                out.setdefault(profile, {})[nb.stem] = float(meta["duration"])
+    return out
+
+
 def main() -> int:
     """Run the benchmarks and print their ratios."""
     res = posture_selection()
@@ -143,6 +243,30 @@ def main() -> int:
     print(f"  minimum degree on A + A^T, symmetric mode: {lu['ours_s']:.2f} s")
     print(f"  SciPy default (COLAMD):                    {lu['default_s']:.2f} s")
     print(f"  speed-up: {lu['speedup']:.1f}x; fill ratio default/ours: {lu['fill_ratio']:.1f}")
+    ch = chapter_timings()
+    print(f"DOE chapter FE work, cold, {ch['geometry']} geometry, {ch['n_dofs']} DOFs:")
+    print(f"  model build (mesh, assembly, factorisation): {ch['build_s']:.1f} s")
+    print(f"  linear part (Tables 2, 4 and 1000 validation runs): {ch['linear_s']:.1f} s")
+    print(
+        f"  non-linear run in-process: {ch['nonlinear_per_run_s']:.1f} s "
+        f"({ch['newton_iterations']:.0f} Newton iterations, mean of {N_NONLINEAR_SERIAL})"
+    )
+    print(
+        f"  {N_NONLINEAR_POOL} runs on 2 processes: {ch['pool_per_run_s']:.1f} s per run "
+        f"(wall, incl. the workers' model builds)"
+    )
+    for name in ("ci", "full"):
+        n = ch[f"{name}_runs"]
+        print(
+            f"  projected non-linear validation, {name} profile ({n} runs): "
+            f"{ch[f'{name}_nonlinear_s'] / 60:.1f} min"
+        )
+    for profile, durations in executed_durations().items():
+        listed = ", ".join(f"{nb} {d:.0f} s" for nb, d in durations.items())
+        print(
+            f"  executed notebooks, profile {profile} (papermill, as built; a warm FE cache "
+            f"shortens virtual_experiments): {listed}"
+        )
     return 0
 
 
