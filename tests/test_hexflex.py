@@ -172,26 +172,8 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
 
 def _tl_tangent_error(model: HexFlexModel, term: str) -> tuple[float, list[float]]:
     """Tangent at u = 0 against the linear stiffness, and the central-difference error of the
-    tangent at a deformed state for three steps, for one TL term on the model's field."""
-    from sfepy.discrete import Equation, Equations, Material, Problem
-    from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
-    from sfepy.terms import Term
-
-    mat = Material("s", D=stiffness_from_youngpoisson(3, model.young, model.poisson))
-    t = Term.new(
-        f"{term}(s.D, v, u)",
-        mdl._integral(mdl.QUAD_ORDER),
-        model._omega,
-        s=mat,
-        v=model._v,
-        u=model._u,
-    )
-    pb = Problem("check", equations=Equations([Equation("balance", t)]))
-    pb.set_bcs(ebcs=model._pb.ebcs)
-    pb.time_update(create_matrix=True)
-    pb.get_variables().init_state()
-    pb.update_materials()
-    ev = pb.get_evaluator()
+    tangent at a deformed state for two steps, for one TL term on the model's field."""
+    ev = model.tl_evaluator(term)
     k0 = model.assembled_stiffness()
     at_zero = abs(ev.eval_tangent_matrix(np.zeros(model.n_dofs)) - k0).max() / abs(k0).max()
     u = model.solve_reduced(np.array([[0.0, 0.0, 0.0, 3.0, -2.0, 0.0]]))[:, 0]

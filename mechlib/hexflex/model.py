@@ -322,26 +322,33 @@ class HexFlexModel:
     def _nonlinear_evaluator(self):
         """SfePy evaluator of the TL Saint Venant–Kirchhoff internal forces (same field, BCs)."""
         if self._nl_evaluator is None:
-            from sfepy.discrete import Equation, Equations, Material, Problem
-            from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
-            from sfepy.terms import Term
-
-            mat = Material("s", D=stiffness_from_youngpoisson(3, self.young, self.poisson))
-            term = Term.new(
-                f"{_register_svk_term()}(s.D, v, u)",
-                _integral(QUAD_ORDER),
-                self._omega,
-                s=mat,
-                v=self._v,
-                u=self._u,
-            )
-            pb = Problem("hexflex_tl", equations=Equations([Equation("balance", term)]))
-            pb.set_bcs(ebcs=self._pb.ebcs)
-            pb.time_update(create_matrix=True)
-            pb.get_variables().init_state()
-            pb.update_materials()
-            self._nl_evaluator = pb.get_evaluator()
+            self._nl_evaluator = self.tl_evaluator(_register_svk_term())
         return self._nl_evaluator
+
+    def tl_evaluator(self, term: str):
+        """SfePy evaluator (residual, tangent) of one total-Lagrangian term taking the linear
+        model's elasticity tensor, ``term(s.D, v, u)``, on this model's field and clamp.
+
+        Parameters
+        ----------
+        term : str
+            SfePy term name, e.g. ``"dw_tl_he_svk"`` (the stock term) or the consistent one.
+        """
+        from sfepy.discrete import Equation, Equations, Material, Problem
+        from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
+        from sfepy.terms import Term
+
+        if self.element != "q2":
+            raise ValueError(f"element must be 'q2' for a TL term, got {self.element!r}")
+        mat = Material("s", D=stiffness_from_youngpoisson(3, self.young, self.poisson))
+        kw = dict(s=mat, v=self._v, u=self._u)
+        t = Term.new(f"{term}(s.D, v, u)", _integral(QUAD_ORDER), self._omega, **kw)
+        pb = Problem("hexflex_tl", equations=Equations([Equation("balance", t)]))
+        pb.set_bcs(ebcs=self._pb.ebcs)
+        pb.time_update(create_matrix=True)
+        pb.get_variables().init_state()
+        pb.update_materials()
+        return pb.get_evaluator()
 
     def solve_nonlinear(
         self,
