@@ -166,8 +166,11 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
         model.solve_nonlinear(big, max_iterations=2)
     with pytest.raises(ValueError, match="steps must be"):
         model.solve_nonlinear(f, steps=0)
+    shell = HexFlexModel(SMALL, element="shell", mesh_size=1.0)
     with pytest.raises(ValueError, match="element must be 'q2'"):
-        HexFlexModel(SMALL, element="shell", mesh_size=1.0).solve_nonlinear(f)
+        shell.solve_nonlinear(f)
+    with pytest.raises(ValueError, match="element must be 'q2' for a TL term, got 'shell'"):
+        shell.tl_evaluator("dw_tl_he_svk")
 
 
 def _tl_tangent_error(model: HexFlexModel, term: str) -> tuple[float, list[float]]:
