@@ -31,11 +31,17 @@ from mechlib.params import check_float
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 RECORDS_ENV = "MECHLIB_RECORDS"
+FE_CACHE_ENV = "MECHLIB_FE_CACHE"
 
 
 def records_dir() -> Path:
     """Folder that records are written to: ``$MECHLIB_RECORDS`` or ``<repo>/build/records``."""
     return Path(os.environ.get(RECORDS_ENV, REPO_ROOT / "build" / "records"))
+
+
+def fe_cache_dir() -> Path:
+    """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
+    return Path(os.environ.get(FE_CACHE_ENV, REPO_ROOT / "build" / "cache" / "experiments"))
 
 
 def _plain(value: Any) -> Any:
@@ -196,11 +202,15 @@ def update_references(records: Path, references: Path) -> list[str]:
 
 
 def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable) -> list[str]:
-    """Execute every notebook again and check its record is byte-identical to ``records``."""
+    """Execute every notebook again and check its record is byte-identical to ``records``.
+
+    The second run starts from an empty FE cache (``$MECHLIB_FE_CACHE`` in a temporary folder),
+    so it checks that two cold computations agree, not merely that cached results are returned.
+    """
     problems = []
     papermill = str(Path(python).with_name("papermill"))
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, **{RECORDS_ENV: tmp})
+        env = dict(os.environ, **{RECORDS_ENV: tmp, FE_CACHE_ENV: str(Path(tmp) / "fe-cache")})
         for nb in sorted(Path(notebooks).glob("*.ipynb")):
             first = Path(records) / f"{nb.stem}.json"
             if not first.exists():

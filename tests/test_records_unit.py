@@ -70,3 +70,44 @@ def test_a_value_recorded_by_another_notebook_is_found_or_named(
         recorded_value("upstream", "size")
     with pytest.raises(FileNotFoundError, match=r"no record of notebook 'nowhere'.*make notebooks"):
         recorded_value("nowhere", "geometry")
+
+
+def test_fe_cache_dir_follows_its_environment_variable(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv(records.FE_CACHE_ENV, raising=False)
+    assert records.fe_cache_dir() == records.REPO_ROOT / "build" / "cache" / "experiments"
+    monkeypatch.setenv(records.FE_CACHE_ENV, str(tmp_path))
+    assert records.fe_cache_dir() == tmp_path
+
+
+_PROBE = """\
+from mechlib.records import REPO_ROOT, Recorder, fe_cache_dir
+d = fe_cache_dir()
+rec = Recorder("probe")
+rec.value("cold_cache", not d.exists() or not any(d.iterdir()))
+rec.value("private_cache", (REPO_ROOT / "build") not in d.parents)
+rec.save()
+"""
+
+
+def test_determinism_rerun_is_cold_and_flags_a_changed_record(tmp_path: Path) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    notebooks, first = tmp_path / "notebooks", tmp_path / "records"
+    notebooks.mkdir()
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(_PROBE)])
+    nbformat.write(nb, notebooks / "probe.ipynb")
+    expected = Recorder("probe")
+    expected.value("cold_cache", True)
+    expected.value("private_cache", True)
+    expected.save(first)
+    # the re-run sees an empty FE cache of its own, so its record equals the expected one ...
+    assert records.rerun_identical(first, notebooks) == []
+    # ... and a first run that recorded something else is reported, naming the value
+    wrong = Recorder("probe")
+    wrong.value("cold_cache", False)
+    wrong.value("private_cache", True)
+    wrong.save(first)
+    problems = records.rerun_identical(first, notebooks)
+    assert len(problems) == 1 and "probe: second run differs" in problems[0]
+    assert "cold_cache" in problems[0]
