@@ -182,6 +182,35 @@ def error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
     }
 
 
+def running_error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
+    """The two relative errors of :func:`error_metrics` over the first k runs, for k = 1 … n.
+
+    Shows how a validation statistic depends on the number of runs: a pointwise maximum keeps
+    growing whenever a new run has a small value of some component, while the error relative
+    to the response range settles once the range is explored.
+
+    Returns
+    -------
+    dict
+        ``runs`` (n,) = 1 … n; ``max_rel_pct`` and ``max_range_pct`` (n, outputs), row k − 1
+        over the first k runs (a zero response, or a zero range so far, counts as 0 %). The last
+        row equals :func:`error_metrics`.
+    """
+    t = check_matrix("truth", truth)
+    p = check_matrix("predicted", predicted, shape=t.shape)
+    err = np.abs(t - p)
+    mag = np.abs(t)
+    rel = np.divide(err, mag, out=np.zeros_like(err), where=mag != 0)
+    top_err = np.maximum.accumulate(err, axis=0)
+    top_mag = np.maximum.accumulate(mag, axis=0)
+    rng = np.divide(100 * top_err, top_mag, out=np.zeros_like(err), where=top_mag != 0)
+    return {
+        "runs": np.arange(1, len(t) + 1),
+        "max_rel_pct": 100 * np.maximum.accumulate(rel, axis=0),
+        "max_range_pct": rng,
+    }
+
+
 def check_runs(name: str, n: object, low: int = 1, high: int = 1_000_000) -> int:
     """Validate a run count parameter."""
     return check_int(name, n, low=low, high=high)

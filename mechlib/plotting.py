@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker as mticker
 import numpy as np
 
 from mechlib.screening import half_normal_points, pareto_order
@@ -418,6 +419,35 @@ def hexflex_actuators(g, planar, directions: np.ndarray, centers: np.ndarray) ->
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_title("Fig 4: actuator directions (D2 out of the page)")
+    return fig
+
+
+def running_errors(running: dict, labels: Sequence[str], title: str) -> plt.Figure:
+    """Pointwise and range-relative maximum error against the number of validation runs
+    (the output of :func:`mechlib.metamodel.running_error_metrics`)."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8), sharex=True, constrained_layout=True)
+    k = running["runs"]
+    for ax, key, name in zip(
+        axes,
+        ("max_rel_pct", "max_range_pct"),
+        ("pointwise: max 100 |ψ − ψ̂| / |ψ|", "range-relative: 100 MAXABS / max |ψ|"),
+        strict=True,
+    ):
+        for j, label in enumerate(labels):
+            ax.plot(k, np.maximum(running[key][:, j], 1e-12), label=label, lw=1.2)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.xaxis.set_major_formatter(mticker.FormatStrFormatter("%g"))
+        # plain run counts on the minor ticks too while they fit (fewer than ten runs)
+        few = k[-1] < 10
+        ax.xaxis.set_minor_formatter(
+            mticker.FormatStrFormatter("%g") if few else mticker.NullFormatter()
+        )
+        ax.set_xlabel("runs included")
+        ax.set_ylabel("max error [%]")
+        ax.set_title(name, fontsize=9)
+    axes[0].legend(fontsize=7, ncol=2)
+    fig.suptitle(title)
     return fig
 
 

@@ -52,6 +52,26 @@ def test_error_metrics_by_hand() -> None:
     assert m["max_range_pct"][0] == pytest.approx(12.5)
 
 
+def test_running_error_metrics_by_hand_and_against_the_full_set() -> None:
+    r = metamodel.running_error_metrics(
+        [[2.0], [-4.0], [0.0], [1.0]], [[2.5], [-4.0], [0.1], [1.5]]
+    )
+    assert r["runs"].tolist() == [1, 2, 3, 4]
+    # pointwise: a run with ψ = 0 counts as 0 %, the small last value raises the maximum
+    assert r["max_rel_pct"][:, 0].tolist() == [25.0, 25.0, 25.0, 50.0]
+    # range-relative: the larger |ψ| of run 2 lowers it; later runs leave it
+    assert r["max_range_pct"][:, 0].tolist() == [25.0, 12.5, 12.5, 12.5]
+    rng = np.random.default_rng(3)
+    t = rng.normal(size=(50, 3))
+    p = t + 0.01 * rng.normal(size=t.shape)
+    full, run = metamodel.error_metrics(t, p), metamodel.running_error_metrics(t, p)
+    for key in ("max_rel_pct", "max_range_pct"):
+        np.testing.assert_array_equal(run[key][-1], full[key])
+    assert np.all(np.diff(run["max_rel_pct"], axis=0) >= 0)
+    with pytest.raises(ValueError, match="predicted must have shape"):
+        metamodel.running_error_metrics(t, p[:-1])
+
+
 def test_bad_input() -> None:
     with pytest.raises(ValueError, match="at least 7 runs"):
         metamodel.fit_linear(np.zeros((6, 6)), np.zeros((6, 1)), intercept=True)
