@@ -89,3 +89,32 @@ def test_bad_designs_are_refused_by_name() -> None:
         ex.run_experiments(SPEC, np.full((2, 6), 80.0), progress=False)
     with pytest.raises(ValueError, match="kind must be one of"):
         ex.run_experiments(SPEC, np.zeros((2, 6)), kind="plastic", progress=False)
+
+
+def test_linear_range_recovers_a_power_law_crossing() -> None:
+    amps = np.array([0.1, 0.3, 1.0, 3.0])
+    # component 0: err = 2 a (passes 1 % at 0.5 N); 1: err = 4 a² (at 0.5 N, exponent 2);
+    # 2: never reaches 1 %; 3: already above 1 % at the smallest amplitude
+    err = np.column_stack([2 * amps, 4 * amps**2, 0.1 * amps, 20 * amps])
+    out = ex.linear_range(amps, err, level=1.0)
+    np.testing.assert_allclose(out["exponent"][:, 0], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(out["exponent"][:, 1], 2.0, rtol=1e-12)
+    np.testing.assert_allclose(out["crossing"][:2], [0.5, 0.5], rtol=1e-12)
+    assert out["crossing"][2] == np.inf and not out["below_sweep"][2]
+    assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
+    # a crossing placed wrongly would be caught: 2 a passes 1 % at 0.5 N, not at 1 N
+    assert not np.isclose(ex.linear_range(amps, err)["crossing"][0], 1.0)
+
+
+def test_linear_range_refuses_bad_input_by_name() -> None:
+    err = np.ones((2, 6))
+    with pytest.raises(ValueError, match="strictly increasing"):
+        ex.linear_range([1.0, 0.1], err)
+    with pytest.raises(ValueError, match="at least two"):
+        ex.linear_range([1.0], err[:1])
+    with pytest.raises(ValueError, match="rel_pct must be > 0"):
+        ex.linear_range([0.1, 1.0], np.zeros((2, 6)))
+    with pytest.raises(ValueError, match="rel_pct must have shape"):
+        ex.linear_range([0.1, 0.3, 1.0], err)
+    with pytest.raises(ValueError, match="level"):
+        ex.linear_range([0.1, 1.0], err, level=0.0)

@@ -40,3 +40,25 @@ def test_bad_notebook_parameter_fails_with_its_name(tmp_path: Path) -> None:
         in done.stderr + out.read_text()
     )
     assert not (tmp_path / "published_doe.json").exists()
+
+
+def test_a_sweep_that_is_not_increasing_is_refused_by_name(tmp_path: Path) -> None:
+    papermill = str(Path(sys.executable).with_name("papermill"))
+    nb = REPO_ROOT / "notebooks" / "virtual_experiments.ipynb"
+    out = tmp_path / "out.ipynb"
+    done = subprocess.run(
+        [
+            *(papermill, "-k", "python3", "--cwd", str(nb.parent), str(nb), str(out)),
+            *("-y", "sweep_amplitudes: [1.0, 0.1]"),
+        ],
+        capture_output=True,
+        text=True,
+        env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},
+        check=False,
+    )
+    assert done.returncode != 0
+    assert (
+        "sweep_amplitudes must list at least two strictly increasing amplitudes"
+        in done.stderr + out.read_text()
+    )
+    assert not (tmp_path / "virtual_experiments.json").exists()

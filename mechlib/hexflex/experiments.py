@@ -262,3 +262,55 @@ def linearity_sweep(
         "rel_pct": 100 * np.abs(nonlin - lin) / np.abs(nonlin),
         "iterations": iters,
     }
+
+
+def linear_range(amplitude: object, rel_pct: object, level: float = 1.0) -> dict[str, np.ndarray]:
+    """Where the linear model's error passes a budget, and how fast it grows, per component.
+
+    Between two consecutive amplitudes the error of each component is taken to follow a power
+    law, err ∝ amplitude**p; ``p`` is measured from the two points, and the amplitude at which
+    the error reaches ``level`` is interpolated on that power law.
+
+    Parameters
+    ----------
+    amplitude : array_like (m,)
+        Strictly increasing load amplitudes [N], m ≥ 2 (``linearity_sweep``'s ``amplitude``).
+    rel_pct : array_like (m, k)
+        Positive, finite relative errors [%] of k components at each amplitude
+        (``linearity_sweep``'s ``rel_pct``).
+    level : float
+        Error budget [%], > 0.
+
+    Returns
+    -------
+    dict
+        ``exponent`` (m−1, k): p between amplitudes i and i+1 (1: error proportional to the
+        load). ``crossing`` (k,): the amplitude [N] at which the error first reaches ``level``,
+        interpolated between the bracketing amplitudes; ``inf`` if it stays below ``level`` at
+        every amplitude, and ``amplitude[0]`` if it is already at or above it there (then
+        ``below_sweep`` is True: the crossing lies at or below the smallest amplitude).
+    """
+    a = np.asarray(amplitude, dtype=float)
+    if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(a <= 0):
+        raise ValueError(
+            f"amplitude must list at least two finite amplitudes > 0 N, got {a.tolist()}"
+        )
+    if np.any(np.diff(a) <= 0):
+        raise ValueError(f"amplitude must be strictly increasing, got {a.tolist()}")
+    e = check_matrix("rel_pct", rel_pct, shape=(a.size, None))
+    if np.any(e <= 0):
+        raise ValueError("rel_pct must be > 0 everywhere (a power law needs a positive error)")
+    if not (np.isfinite(level) and level > 0):
+        raise ValueError(f"level must be a finite error budget > 0 %, got {level}")
+    log_a, log_e = np.log(a), np.log(e)
+    exponent = np.diff(log_e, axis=0) / np.diff(log_a)[:, None]
+    crossing = np.full(e.shape[1], np.inf)
+    below = e[0] >= level
+    crossing[below] = a[0]
+    for j in np.flatnonzero(~below):
+        over = np.flatnonzero(e[:, j] >= level)
+        if over.size:
+            i = over[0]  # e[i-1, j] < level <= e[i, j]
+            step = (np.log(level) - log_e[i - 1, j]) / exponent[i - 1, j]
+            crossing[j] = np.exp(log_a[i - 1] + step)
+    return {"exponent": exponent, "crossing": crossing, "below_sweep": below}
