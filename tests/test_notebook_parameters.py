@@ -9,56 +9,32 @@ from pathlib import Path
 from mechlib.records import REPO_ROOT
 
 
-def test_bad_notebook_parameter_fails_with_its_name(tmp_path: Path) -> None:
+def _run_with(name: str, args: list[str], tmp_path: Path) -> tuple[int, str]:
+    """Run notebooks/<name>.ipynb with papermill ``args``; return its exit code and all output."""
     papermill = str(Path(sys.executable).with_name("papermill"))
-    nb = REPO_ROOT / "notebooks" / "published_doe.ipynb"
+    nb = REPO_ROOT / "notebooks" / f"{name}.ipynb"
     out = tmp_path / "out.ipynb"
     done = subprocess.run(
-        [
-            papermill,
-            "-k",
-            "python3",
-            "--cwd",
-            str(nb.parent),
-            str(nb),
-            str(out),
-            "-p",
-            "penalty",
-            "elastic-net",
-            "-p",
-            "n_random_designs",
-            "10",
-        ],
+        [papermill, "-k", "python3", "--cwd", str(nb.parent), str(nb), str(out), *args],
         capture_output=True,
         text=True,
         env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},
         check=False,
     )
-    assert done.returncode != 0
-    assert (
-        "penalty must be one of ['ridge', 'lasso'], got 'elastic-net'"
-        in done.stderr + out.read_text()
-    )
+    return done.returncode, done.stderr + (out.read_text() if out.exists() else "")
+
+
+def test_bad_notebook_parameter_fails_with_its_name(tmp_path: Path) -> None:
+    args = ["-p", "penalty", "elastic-net", "-p", "n_random_designs", "10"]
+    code, output = _run_with("published_doe", args, tmp_path)
+    assert code != 0
+    assert "penalty must be one of ['ridge', 'lasso'], got 'elastic-net'" in output
     assert not (tmp_path / "published_doe.json").exists()
 
 
 def test_a_sweep_that_is_not_increasing_is_refused_by_name(tmp_path: Path) -> None:
-    papermill = str(Path(sys.executable).with_name("papermill"))
-    nb = REPO_ROOT / "notebooks" / "virtual_experiments.ipynb"
-    out = tmp_path / "out.ipynb"
-    done = subprocess.run(
-        [
-            *(papermill, "-k", "python3", "--cwd", str(nb.parent), str(nb), str(out)),
-            *("-y", "sweep_amplitudes: [1.0, 0.1]"),
-        ],
-        capture_output=True,
-        text=True,
-        env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},
-        check=False,
-    )
-    assert done.returncode != 0
-    assert (
-        "sweep_amplitudes must list at least two strictly increasing amplitudes"
-        in done.stderr + out.read_text()
-    )
+    args = ["-y", "sweep_amplitudes: [1.0, 0.1]"]
+    code, output = _run_with("virtual_experiments", args, tmp_path)
+    assert code != 0
+    assert "sweep_amplitudes must list at least two strictly increasing amplitudes" in output
     assert not (tmp_path / "virtual_experiments.json").exists()
