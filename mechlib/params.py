@@ -102,6 +102,49 @@ def check_choice(name: str, value: object, allowed: Iterable[object]) -> object:
     return value
 
 
+def check_increasing(
+    name: str,
+    values: object,
+    *,
+    low: float | None = None,
+    high: float | None = None,
+    low_open: bool = False,
+    min_len: int = 2,
+) -> np.ndarray:
+    """Return ``values`` as a 1-D float array of at least ``min_len`` strictly increasing numbers.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    values : array_like
+        The sequence; each entry is checked as by :func:`check_float`.
+    low, high, low_open
+        Bounds of every entry, as in :func:`check_float`.
+    min_len : int
+        Smallest allowed number of entries.
+
+    Raises
+    ------
+    ValueError
+        If ``values`` is not 1-D, too short, not strictly increasing or has an entry out of range.
+    """
+    arr = np.asarray(values, dtype=object)
+    bounds = _range_text(low, high, low_open)
+    if arr.ndim != 1 or arr.size < min_len:
+        raise ValueError(
+            f"{name} must list at least {min_len} strictly increasing values{bounds}, "
+            f"got {np.asarray(values).tolist()}"
+        )
+    out = np.array([check_float(name, v, low=low, high=high, low_open=low_open) for v in arr])
+    if np.any(np.diff(out) <= 0):
+        raise ValueError(
+            f"{name} must list at least {min_len} strictly increasing values{bounds}, "
+            f"got {out.tolist()}"
+        )
+    return out
+
+
 def check_matrix(
     name: str, value: object, *, shape: tuple[int | None, int | None] | None = None
 ) -> np.ndarray:

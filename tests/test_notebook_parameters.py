@@ -36,5 +36,5 @@ def test_a_sweep_that_is_not_increasing_is_refused_by_name(tmp_path: Path) -> No
     args = ["-y", "sweep_amplitudes: [1.0, 0.1]"]
     code, output = _run_with("virtual_experiments", args, tmp_path)
     assert code != 0
-    assert "sweep_amplitudes must list at least two strictly increasing amplitudes" in output
+    assert "sweep_amplitudes [N] must list at least 2 strictly increasing values" in output
     assert not (tmp_path / "virtual_experiments.json").exists()

@@ -1,15 +1,17 @@
 """Parameter validation and report verdicts."""
 
+import numpy as np
 import pytest
 
 from mechlib import report
-from mechlib.params import check_choice, check_float, check_int
+from mechlib.params import check_choice, check_float, check_increasing, check_int
 
 
 def test_checks_accept_good_values() -> None:
     assert check_int("n", 3, low=1, high=5) == 3
     assert check_float("a", 0.5, low=0.0, high=1.0, low_open=True) == 0.5
     assert check_choice("m", "ridge", ("ridge", "lasso")) == "ridge"
+    np.testing.assert_array_equal(check_increasing("amps", [0.1, 1], low=0.0), [0.1, 1.0])
 
 
 @pytest.mark.parametrize(
@@ -29,6 +31,18 @@ def test_checks_accept_good_values() -> None:
         ),
         (lambda: check_float("alpha", "x"), TypeError, "alpha must be a real number"),
         (lambda: check_float("sigma", float("inf")), ValueError, "sigma must be finite"),
+        (
+            lambda: check_increasing("amps", [1.0, 0.1], low=0.0, high=50.0, low_open=True),
+            ValueError,
+            r"amps must list at least 2 strictly increasing values in \(0.0, 50.0\], "
+            r"got \[1.0, 0.1\]",
+        ),
+        (lambda: check_increasing("amps", [0.5]), ValueError, "amps must list at least 2"),
+        (
+            lambda: check_increasing("amps", [0.5, 60.0], high=50.0),
+            ValueError,
+            "amps must be <= 50",
+        ),
         (
             lambda: check_choice("penalty", "l3", ("ridge", "lasso")),
             ValueError,

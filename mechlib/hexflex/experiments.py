@@ -25,7 +25,7 @@ import numpy as np
 
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_FORCE_N, HexFlexModel
-from mechlib.params import check_choice, check_int, check_matrix
+from mechlib.params import check_choice, check_increasing, check_int, check_matrix
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Rows per task for the linear model (one batched back-substitution each).
@@ -290,13 +290,7 @@ def linear_range(amplitude: object, rel_pct: object, level: float = 1.0) -> dict
         every amplitude, and ``amplitude[0]`` if it is already at or above it there (then
         ``below_sweep`` is True: the crossing lies at or below the smallest amplitude).
     """
-    a = np.asarray(amplitude, dtype=float)
-    if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(a <= 0):
-        raise ValueError(
-            f"amplitude must list at least two finite amplitudes > 0 N, got {a.tolist()}"
-        )
-    if np.any(np.diff(a) <= 0):
-        raise ValueError(f"amplitude must be strictly increasing, got {a.tolist()}")
+    a = check_increasing("amplitude [N]", amplitude, low=0.0, low_open=True)
     e = check_matrix("rel_pct", rel_pct, shape=(a.size, None))
     if np.any(e <= 0):
         raise ValueError("rel_pct must be > 0 everywhere (a power law needs a positive error)")
