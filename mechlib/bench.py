@@ -43,13 +43,10 @@ REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
 def _bench_geometry():
-    """A representative geometry of the size the hexflex notebook identifies (mm)."""
+    """A representative geometry of the size the hexflex notebook identifies (the defaults)."""
     from mechlib.hexflex.geometry import HexFlexGeometry
 
-    return HexFlexGeometry(
-        stage_radius=8, arm_half_width=2.5, arm_end=14, link_width=0.45, link_length=8,
-        wall_width=3, slot=2, tab_depth=8, beam_width=0.75, beam_length=21, thickness=0.63,
-    )  # fmt: skip
+    return HexFlexGeometry()
 
 
 def posture_selection() -> dict[str, float]:
@@ -128,16 +125,15 @@ def _chapter_spec():
     """The FE model of the DOE chapter: the geometry the hexflex notebook identified when a build
     holds its record, else the bench geometry (the second item says which)."""
     from mechlib.hexflex import experiments as ex
-    from mechlib.hexflex.geometry import HexFlexGeometry
+    from mechlib.hexflex.identify import recorded_geometry
     from mechlib.hexflex.model import DEFAULT_MESH_FRACTION
-    from mechlib.records import recorded_value
 
     try:
-        g, source = HexFlexGeometry(*recorded_value("hexflex_model", "geometry")), "identified"
+        g, source = recorded_geometry(), "identified"
     except (FileNotFoundError, KeyError):
         g, source = _bench_geometry(), "bench"
     return ex.ModelSpec(
-        g, mesh_size=DEFAULT_MESH_FRACTION * min(g.beam_width, g.link_width)
+        g, mesh_size=DEFAULT_MESH_FRACTION * g.narrowest
     ), source
 
 

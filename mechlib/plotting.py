@@ -342,53 +342,39 @@ def _quads(ax, nodes, quads, values=None, cmap="viridis", **kw):
 
 
 def hexflex_geometry(g, planar, parts: np.ndarray, part_names: Sequence[str]) -> plt.Figure:
-    """Fig 2: the identified planform, its parts and its dimensions [mm]."""
-    from matplotlib.patches import Patch
+    """Fig 2: the identified planform, its parts, the grounded zone and the dimensions [mm]."""
+    from matplotlib.patches import Patch, Polygon
+
+    from mechlib.hexflex.geometry import TAB_ANGLES_DEG, ground_polygons
 
     fig, (ax, ax_t) = plt.subplots(
         1, 2, figsize=(10, 5.2), constrained_layout=True, gridspec_kw={"width_ratios": [1.6, 1]}
     )
     colors = plt.cm.tab10(np.arange(len(part_names)))
     _quads(ax, planar.nodes, planar.quads, facecolors=colors[parts], edgecolors="none")
-    ring = plt.Circle((0, 0), g.ground_radius, fill=False, ls="--", color="k", lw=1)
-    ax.add_patch(ring)
-    ax.annotate(
-        "grounded zone (clamped)",
-        (0, g.ground_radius),
-        (0, g.ground_radius + 4),
-        ha="center",
-        fontsize=8,
-    )
+    outer = 1.12 * max(g.tab_outer, 2 * g.ground_radius)
+    for poly in ground_polygons(g, outer):
+        ax.add_patch(Polygon(poly, closed=True, fill=False, hatch="///", ec="0.5", lw=0.8))
+    ax.annotate("grounded zone (clamped)", (0, -0.95 * outer), ha="center", fontsize=8)
     for k, name in enumerate(("T1", "T2", "T3")):
-        a = np.deg2rad((90.0, 330.0, 210.0)[k])
-        ax.annotate(
-            name,
-            (1.12 * g.tab_outer * np.cos(a), 1.12 * g.tab_outer * np.sin(a)),
-            ha="center",
-            fontsize=10,
-            weight="bold",
-        )
-    ax.legend(
-        handles=[Patch(color=c, label=n) for c, n in zip(colors, part_names, strict=True)],
-        fontsize=7,
-        loc="lower right",
-    )
-    lim = 1.15 * g.ground_radius
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-0.7 * lim, lim)
+        a = np.deg2rad(TAB_ANGLES_DEG[k])
+        r = 1.06 * g.tab_outer
+        ax.annotate(name, (r * np.cos(a), r * np.sin(a)), ha="center", fontsize=10, weight="bold")
+    handles = [Patch(color=c, label=n) for c, n in zip(colors, part_names, strict=True)]
+    handles.append(Patch(fill=False, hatch="///", ec="0.5", label="ground"))
+    ax.legend(handles=handles, fontsize=7, loc="upper right")
+    ax.set_xlim(-outer, outer)
+    ax.set_ylim(-outer, 1.1 * g.tab_outer)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
-    rows = [(k, f"{v:.3g}") for k, v in vars(g).items()]
-    rows += [
-        ("tab centre radius", f"{g.tab_center:.3g}"),
-        ("ground radius", f"{g.ground_radius:.3g}"),
-    ]
+    rows = [(k, f"{v:.4g}") for k, v in g.as_dict().items()]
+    rows += [("ground radius", f"{g.ground_radius:.4g}"), ("stage gap", f"{g.stage_gap:.3g}")]
     ax_t.axis("off")
     table = ax_t.table(
         cellText=[[k, v] for k, v in rows], colLabels=["dimension", "mm"], loc="center"
     )
     table.scale(1, 1.2)
-    fig.suptitle("Fig 2: our HexFlex planform and its dimensions")
+    fig.suptitle("Fig 2 (reconstructed): our HexFlex planform and its dimensions")
     return fig
 
 
@@ -404,7 +390,8 @@ def hexflex_mesh(sector, full) -> plt.Figure:
 
 
 def hexflex_actuators(g, planar, directions: np.ndarray, centers: np.ndarray) -> plt.Figure:
-    """Fig 4: positive actuator directions D1 (arrows) and D2 (+z, dots) at each tab."""
+    """Fig 4: positive actuator directions D1 (arrows) and D2 (+z, dots) at each tab's
+    external edge (``centers``, (3, 2) [mm])."""
     fig, ax = plt.subplots(figsize=(5.6, 5.2), constrained_layout=True)
     _quads(ax, planar.nodes, planar.quads, facecolors="#e6e6e6", edgecolors="none")
     for k in range(3):
@@ -415,7 +402,7 @@ def hexflex_actuators(g, planar, directions: np.ndarray, centers: np.ndarray) ->
         ax.plot(*c, "o", color=OURS_COLOR, ms=8, mfc="none", mew=2)
         ax.plot(*c, ".", color=OURS_COLOR, ms=4)
         ax.annotate(f"T{k + 1}D1", c + 13 * d, fontsize=8, color=ACTIVE_COLOR)
-        ax.annotate(f"T{k + 1}D2 (+z)", c + np.array([2.0, -4.0]), fontsize=8, color=OURS_COLOR)
+        ax.annotate(f"T{k + 1}D2 (+z)", c + np.array([2.0, -5.0]), fontsize=8, color=OURS_COLOR)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_title("Fig 4: actuator directions (D2 out of the page)")
@@ -484,26 +471,4 @@ def hexflex_stage_motions(model, poses: np.ndarray, labels: Sequence[str]) -> pl
     for ax, f, label in zip(axes.ravel(), forces, labels, strict=True):
         hexflex_deformed(model.planar, model.midplane_displacements(f), label, ax=ax)
     fig.suptitle("Fig 3: the six stage motions, each from the inverse model")
-    return fig
-
-
-def tilt_ratio_sample(
-    radius: np.ndarray, ratio: np.ndarray, target: float, fitted: tuple[float, float]
-) -> plt.Figure:
-    """θx/z over sampled designs against the links' radius, with the rigid-support bound 2/ρ.
-
-    ``radius`` [mm] and ``ratio`` [rad/m] per design; ``target`` is Eq 8's ratio; ``fitted``
-    is (radius, ratio) of the identified design.
-    """
-    fig, ax = plt.subplots(figsize=(6.0, 4.0))
-    rho = np.linspace(0.95 * radius.min(), 1.05 * radius.max(), 100)
-    ax.plot(rho, 2e3 / rho, "k-", label="ideal: stage on three point supports, 2/ρ")
-    ax.axhline(target, color="C3", ls="--", label="Eq 8")
-    ax.scatter(radius, ratio, s=14, color="C0", label="sampled designs (shell)")
-    ax.plot(*fitted, "C1*", ms=14, label="identified design (Q2)")
-    ax.set_xlabel("radius of the links ρ = arm_end [mm]")
-    ax.set_ylabel("θx←T1D2 / z←T1D2 [rad/m]")
-    ax.set_ylim(0, 1.1 * max(2e3 / rho.min(), target))
-    ax.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
     return fig

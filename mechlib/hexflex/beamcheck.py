@@ -68,9 +68,9 @@ def fe_tip(
     from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
     from sfepy.terms import Term
 
-    from mechlib.hexflex.model import QUAD_ORDER, _integral, _quiet_sfepy
+    from mechlib.hexflex.problem import QUAD_ORDER, integral, quiet_sfepy
 
-    _quiet_sfepy()
+    quiet_sfepy()
     direction = check_choice("direction", direction, ("in_plane", "out_of_plane"))
     n_width = check_int("n_width", n_width, low=1, high=64)
     for name, v in (("length", length), ("width", width), ("thickness", thickness)):
@@ -102,13 +102,13 @@ def fe_tip(
     vol = width * thickness * min(tip, length)
     f = np.zeros((3, 1))
     f[comp] = 1.0 / vol
-    integral = _integral(QUAD_ORDER)
+    quad = integral(QUAD_ORDER)
     m = Material("m", D=stiffness_from_youngpoisson(3, young, poisson))
     fm = Material("f", val=f)
     eq = Equation(
         "balance",
-        Term.new("dw_lin_elastic(m.D, v, u)", integral, omega, m=m, v=v, u=u)
-        - Term.new("dw_volume_lvf(f.val, v)", integral, load, f=fm, v=v),
+        Term.new("dw_lin_elastic(m.D, v, u)", quad, omega, m=m, v=v, u=u)
+        - Term.new("dw_volume_lvf(f.val, v)", quad, load, f=fm, v=v),
     )
     pb = Problem("beam", equations=Equations([eq]))
     pb.set_bcs(ebcs=Conditions([EssentialBC("clamp", clamp, {"u.all": 0.0})]))

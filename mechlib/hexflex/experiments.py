@@ -32,7 +32,14 @@ KINDS: tuple[str, ...] = ("linear", "nonlinear")
 LINEAR_BLOCK = 250
 _CACHE_VERSION = 1
 #: Modules whose source enters the cache key (see :func:`model_code_fingerprint`).
-_MODEL_SOURCES: tuple[str, ...] = ("geometry.py", "mesh.py", "model.py", "pose.py")
+_MODEL_SOURCES: tuple[str, ...] = (
+    "geometry.py",
+    "mesh.py",
+    "problem.py",
+    "model.py",
+    "nonlinear.py",
+    "pose.py",
+)
 
 
 @dataclass(frozen=True)

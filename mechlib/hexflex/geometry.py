@@ -1,30 +1,31 @@
-"""Parametric planform of our HexFlex: three identical legs around a triangular stage.
+"""Parametric planform of our HexFlex, reconstructed from the thesis's text and Eq 8.
 
-The thesis's Fig 2 (the HexFlex drawing with dimensions) is not available, so the topology is
-ours, built from the thesis's description (sec. 2.6.1: a triangular motion stage, three tabs that
-interface the actuators, connection beams between the stage and the grounded zone, D1 in-plane and
-parallel to the connection beams, D2 out of plane) and from the signs of Eq 8, which fix the
-layout: tab T1 on the +y axis, T2 at 330°, T3 at 210°, and the positive D1 vectors T1 (1, 0),
-T2 (0.5, 0.866), T3 (−0.5, 0.866). D1 is tangential at every tab, but *not* with the same
-handedness: T1 and T3 point clockwise about the stage centre and T2 counter-clockwise (Eq 8's θz
-row: −3101.84, +3101.79, −3101.81), so the actuator convention of Fig 4 is not three-fold
-symmetric although the mechanism is.
+The thesis's Fig 2 (the drawing with dimensions) is not available. Its text (sec. 2.6.1) says the
+part is *a triangular motion stage, three tabs that interface with the actuators, and six
+connection beams between the motion stage and the grounded zone*, with two actuators at each
+tab's *external edge*: D1 in-plane and parallel to the connection beams, D2 out of plane. The
+signs of Eq 8 fix the layout: tab T1 on the +y axis, T2 at 330°, T3 at 210°, and the positive D1
+vectors T1 (1, 0), T2 (0.5, 0.866), T3 (−0.5, 0.866). D1 is tangential at every tab but *not*
+with the same handedness: T1 and T3 point clockwise about the stage centre and T2
+counter-clockwise (Eq 8's θz row: −3101.84, +3101.79, −3101.81), so the actuator convention of
+Fig 4 is not three-fold symmetric although the mechanism is.
 
-Each leg, in its local frame (``r`` along the tab axis, ``s`` along the tangent), is a union of
-rectangles, mirror-symmetric in ``s``:
+Our reconstruction: the stage and its three tabs are **one body** — a triangle of circumradius
+``stage_radius`` with vertices on the tab axes, and three radial tabs of half-width
+``tab_half_width`` out to the external edge at ``tab_outer``. Each tab carries two L-shaped
+connection beams, mirror images of each other. In a tab's local frame (``r`` along its axis,
+``s`` along the counter-clockwise tangent) one beam is, on centre lines:
 
-- *arm*: a radial extension of the stage, ``|s| <= arm_half_width``, up to ``arm_end``;
-- *links* (the connection beams, parallel to D1): ``r`` in ``[arm_end - link_width, arm_end]``,
-  ``|s|`` from ``arm_half_width`` to ``arm_half_width + link_length``;
-- *tab*: a U-shaped paddle opening toward the stage — two walls of width ``wall_width`` outside
-  the links and an outer bar (the actuator interface) of radial depth ``tab_depth`` beyond a slot
-  of width ``slot`` past the arm's end;
-- *ground beams*: two radial beams of width ``beam_width`` and length ``beam_length`` on the
-  walls' centre lines, from the tab's outer edge to the grounded zone (clamped).
+- a *D1 segment* (parallel to D1) of width ``beam_width`` at radius ``beam_radius`` (ρ), from
+  the tab's side ``s = tab_half_width`` to ``s = tab_half_width + beam_length``;
+- a *corner* block where the two segments meet;
+- a *radial segment* of width ``radial_width`` on ``s = tab_half_width + beam_length``, from
+  ``r = beam_radius`` out to the grounded zone at ``r = beam_radius + radial_length``, where it
+  is clamped. The grounded zone is three sectors between the tabs.
 
-Pushing a tab along D1 bends its ground beams (a parallelogram guide) and pulls the stage
-through the links (axially); a radial stage motion bends the links; out of plane everything
-bends and twists. All lengths are in mm.
+The radial segment is the bending element in series that a straight beam between a rigid stage
+and a rigid ground lacks: pushing a tab along D1 loads the D1 segments axially, and the radial
+segments bend. All lengths are in mm.
 """
 
 from __future__ import annotations
@@ -40,111 +41,175 @@ TAB_ANGLES_DEG: tuple[float, float, float] = (90.0, 330.0, 210.0)
 #: Sign of each tab's positive D1 relative to the counter-clockwise tangent (Eq 8, θz row).
 TAB_D1_SIGNS: tuple[int, int, int] = (-1, 1, -1)
 #: Part labels returned by :func:`classify`.
-PARTS: tuple[str, ...] = ("stage", "arm", "link", "tab", "beam")
+PARTS: tuple[str, ...] = ("stage", "tab", "beam", "corner", "radial")
+#: Smallest slot between two separate parts of the plate [mm] (a wire-EDM or water-jet kerf).
+MIN_GAP_MM = 0.5
+#: Allowed range of every dimension [mm] (inclusive), checked before anything is meshed.
+DIMENSION_BOUNDS: dict[str, tuple[float, float]] = {
+    "stage_radius": (5.0, 40.0),
+    "tab_half_width": (1.0, 10.0),
+    "tab_outer": (15.0, 80.0),
+    "beam_radius": (8.0, 50.0),
+    "beam_width": (0.1, 3.0),
+    "beam_length": (2.0, 30.0),
+    "radial_width": (0.1, 3.0),
+    "radial_length": (1.0, 30.0),
+    "thickness": (0.2, 5.0),
+}
 _EPS = 1e-9
 
 
 @dataclass(frozen=True)
 class HexFlexGeometry:
-    """Dimensions of the planform and the plate thickness, all in mm (see the module text)."""
+    """Dimensions of the planform and the plate thickness, all in mm (see the module text).
 
-    stage_radius: float = 20.0
-    arm_half_width: float = 4.0
-    arm_end: float = 32.0
-    link_width: float = 1.5
-    link_length: float = 10.0
-    wall_width: float = 4.0
-    slot: float = 2.0
-    tab_depth: float = 10.0
-    beam_width: float = 1.5
-    beam_length: float = 20.0
-    thickness: float = 1.0
+    Raises
+    ------
+    ValueError
+        If a dimension is outside :data:`DIMENSION_BOUNDS`, or parts overlap (the tab leaves the
+        stage's sector, a beam touches the stage or the tab, a tab ends before its beams) or the
+        beams do not fit between the tabs — each with the dimension, its value and its range.
+    """
+
+    stage_radius: float = 25.0
+    tab_half_width: float = 3.0
+    tab_outer: float = 45.0
+    beam_radius: float = 22.0
+    beam_width: float = 0.276
+    beam_length: float = 11.72
+    radial_width: float = 0.276
+    radial_length: float = 3.95
+    thickness: float = 0.505
 
     def __post_init__(self) -> None:
         for f in fields(self):
-            check_float(f"{f.name} [mm]", getattr(self, f.name), low=0.0, low_open=True)
-        g = self
-        if g.arm_end - g.link_width <= g.stage_radius:
-            raise ValueError(
-                f"link_width must be < arm_end - stage_radius = {g.arm_end - g.stage_radius:g} mm "
-                f"(the links would overlap the stage), got {g.link_width:g} mm"
-            )
-        if g.beam_width > g.wall_width:
-            raise ValueError(
-                f"beam_width must be <= wall_width = {g.wall_width:g} mm (a ground beam is wider "
-                f"than the tab wall it starts from), got {g.beam_width:g} mm"
-            )
-        widest = g.stage_radius * np.sqrt(3) / 4  # the arm's root stays on the stage's sixth
-        if g.arm_half_width >= widest:
-            raise ValueError(
-                f"arm_half_width must be < √3/4 · stage_radius = {widest:g} mm, "
-                f"got {g.arm_half_width:g} mm"
-            )
-        # the leg must stay inside its 120° sector: half-angle of its widest corner < 60°
-        corner = np.arctan2(self.half_span, self.arm_end - self.link_width)
-        if corner >= np.pi / 3:
-            raise ValueError(
-                f"legs overlap: arm_half_width + link_length + wall_width = {self.half_span:g} mm "
-                f"must be < tan(60°)·(arm_end − link_width) = "
-                f"{np.tan(np.pi / 3) * (self.arm_end - self.link_width):g} mm"
-            )
+            low, high = DIMENSION_BOUNDS[f.name]
+            check_float(f"{f.name} [mm]", getattr(self, f.name), low=low, high=high)
+        g, gap = self, MIN_GAP_MM
+        widest = np.sqrt(3) / 4 * g.stage_radius
+        _need(
+            g.tab_half_width < widest,
+            "tab_half_width",
+            g.tab_half_width,
+            f"< √3/4 · stage_radius = {widest:.4g}",
+            "the tab's root leaves the stage's sixth",
+        )
+        # the stage's edge crosses the tab's side at r = R_s − √3 s₀; the D1 segment must clear it
+        low = g.stage_radius - np.sqrt(3) * g.tab_half_width + 0.5 * g.beam_width + gap
+        _need(
+            g.beam_radius >= low,
+            "beam_radius",
+            g.beam_radius,
+            f">= stage_radius − √3·tab_half_width + beam_width/2 + {gap:g} = {low:.4g}",
+            "the D1 segment would touch the stage",
+        )
+        low = 0.5 * g.radial_width + gap
+        _need(
+            g.beam_length >= low,
+            "beam_length",
+            g.beam_length,
+            f">= radial_width/2 + {gap:g} = {low:.4g}",
+            "the radial segment would touch the tab",
+        )
+        low = 0.5 * g.beam_width + gap
+        _need(
+            g.radial_length >= low,
+            "radial_length",
+            g.radial_length,
+            f">= beam_width/2 + {gap:g} = {low:.4g}",
+            "no free radial segment",
+        )
+        low = g.beam_radius + 0.5 * g.beam_width + gap
+        _need(
+            g.tab_outer >= low,
+            "tab_outer",
+            g.tab_outer,
+            f">= beam_radius + beam_width/2 + {gap:g} = {low:.4g}",
+            "the tab ends inside its beams",
+        )
+        # the two beams between neighbouring tabs are mirror images about the 60° line: the
+        # corner's inner outer-corner must stay gap/2 away from it
+        far = g.corner_s + 0.5 * g.radial_width
+        high = np.sqrt(3) * (g.beam_radius - 0.5 * g.beam_width) - far - gap
+        _need(
+            high >= 0,
+            "beam_length",
+            g.beam_length,
+            f"<= {g.beam_length + high:.4g} at beam_radius = {g.beam_radius:g}",
+            "the beams of neighbouring tabs would overlap: they do not fit between the tabs",
+        )
 
     # derived radii and offsets ------------------------------------------------------------
     @property
-    def half_span(self) -> float:
-        """Tangential half-width of the tab (outer face of a wall) [mm]."""
-        return self.arm_half_width + self.link_length + self.wall_width
-
-    @property
-    def beam_offset(self) -> float:
-        """Tangential offset of the ground beams' centre lines (the walls' centre lines) [mm]."""
-        return self.arm_half_width + self.link_length + 0.5 * self.wall_width
-
-    @property
-    def arm_start(self) -> float:
-        """Radius where the arm rectangle starts, inside the stage and inside the 60° sector."""
-        low = self.arm_half_width / np.sqrt(3)  # its corner on the sector's 30° cut line
-        high = self.stage_radius - np.sqrt(3) * self.arm_half_width  # its corner on the stage edge
-        return 0.5 * (low + high)
-
-    @property
-    def tab_inner(self) -> float:
-        """Inner radius of the tab's outer bar (after the slot) [mm]."""
-        return self.arm_end + self.slot
-
-    @property
-    def tab_outer(self) -> float:
-        """Outer radius of the tab [mm]."""
-        return self.tab_inner + self.tab_depth
+    def corner_s(self) -> float:
+        """Tangential offset of the radial segments' centre lines [mm]."""
+        return self.tab_half_width + self.beam_length
 
     @property
     def ground_radius(self) -> float:
-        """Radius (along each tab axis) where the ground beams are clamped [mm]."""
-        return self.tab_outer + self.beam_length
+        """Radius (in each tab's frame) where the radial segments are clamped [mm]."""
+        return self.beam_radius + self.radial_length
 
     @property
-    def tab_center(self) -> float:
-        """Radius of the centre of the actuator interface (the tab's outer bar) [mm]."""
-        return self.tab_inner + 0.5 * self.tab_depth
+    def tab_start(self) -> float:
+        """Radius where the tab rectangle starts, inside the stage and inside the 60° sector."""
+        low = self.tab_half_width / np.sqrt(3)  # its corner on the sector's 30° cut line
+        high = self.stage_radius - np.sqrt(3) * self.tab_half_width  # its corner on the stage edge
+        return 0.5 * (low + high)
+
+    @property
+    def stage_gap(self) -> float:
+        """Radial slot between the stage's edge and the D1 segment at the tab's side [mm]."""
+        edge = self.stage_radius - np.sqrt(3) * self.tab_half_width
+        return self.beam_radius - 0.5 * self.beam_width - edge
+
+    @property
+    def narrowest(self) -> float:
+        """Narrowest flexure width [mm] (the mesh is sized on it)."""
+        return min(self.beam_width, self.radial_width)
+
+    def as_dict(self) -> dict[str, float]:
+        """Dimensions by name [mm] (what records and notebooks pass around)."""
+        return {k: float(v) for k, v in asdict(self).items()}
+
+    @classmethod
+    def from_dict(cls, dims: dict[str, float]) -> HexFlexGeometry:
+        """The geometry of dimensions given by name [mm] (all of :data:`DIMENSION_BOUNDS`).
+
+        Raises
+        ------
+        ValueError
+            If a name is unknown or missing.
+        """
+        names = set(DIMENSION_BOUNDS)
+        unknown, missing = sorted(set(dims) - names), sorted(names - set(dims))
+        if unknown or missing:
+            raise ValueError(
+                f"geometry must name exactly the dimensions {sorted(names)}; "
+                f"unknown: {unknown}, missing: {missing}"
+            )
+        return cls(**{k: float(v) for k, v in dims.items()})
 
     def replace(self, **changes: float) -> HexFlexGeometry:
         """A copy with some dimensions changed (validated again)."""
         return HexFlexGeometry(**{**asdict(self), **changes})
 
     def rectangles(self) -> dict[str, list[tuple[float, float, float, float]]]:
-        """Half-leg rectangles ``(r0, r1, s0, s1)`` for ``s >= 0``, per part."""
+        """Half-leg rectangles ``(r0, r1, s0, s1)`` for ``s >= 0``, per part (not the stage)."""
         g = self
-        wall0 = g.arm_half_width + g.link_length
-        b0, b1 = g.beam_offset - 0.5 * g.beam_width, g.beam_offset + 0.5 * g.beam_width
+        b0, b1 = g.beam_radius - 0.5 * g.beam_width, g.beam_radius + 0.5 * g.beam_width
+        c0, c1 = g.corner_s - 0.5 * g.radial_width, g.corner_s + 0.5 * g.radial_width
         return {
-            "arm": [(g.arm_start, g.arm_end, 0.0, g.arm_half_width)],
-            "link": [(g.arm_end - g.link_width, g.arm_end, g.arm_half_width, wall0)],
-            "tab": [
-                (g.arm_end - g.link_width, g.tab_outer, wall0, g.half_span),
-                (g.tab_inner, g.tab_outer, 0.0, wall0),
-            ],
-            "beam": [(g.tab_outer, g.ground_radius, b0, b1)],
+            "tab": [(g.tab_start, g.tab_outer, 0.0, g.tab_half_width)],
+            "beam": [(b0, b1, g.tab_half_width, c0)],
+            "corner": [(b0, b1, c0, c1)],
+            "radial": [(b1, g.ground_radius, c0, c1)],
         }
+
+
+def _need(ok: bool, name: str, value: float, allowed: str, why: str) -> None:
+    if not ok:
+        raise ValueError(f"{name} [mm] must be {allowed} mm ({why}), got {value:g} mm")
 
 
 def tab_frames() -> tuple[np.ndarray, np.ndarray]:
@@ -159,6 +224,39 @@ def actuator_directions() -> np.ndarray:
     out = np.zeros((6, 3))
     out[0::2, :2] = e_s * np.asarray(TAB_D1_SIGNS)[:, None]
     out[1::2, 2] = 1.0
+    return out
+
+
+def actuator_points(g: HexFlexGeometry) -> np.ndarray:
+    """Centres (3, 2) [mm] of the tabs' external edges, where the actuators act."""
+    e_r, _ = tab_frames()
+    return g.tab_outer * e_r
+
+
+def ground_polygons(g: HexFlexGeometry, outer: float, n_arc: int = 24) -> list[np.ndarray]:
+    """Outlines (m, 2) [mm] of the three grounded sectors between the tabs, for drawings.
+
+    Each sector's inner edge is the line ``r = ground_radius`` of both neighbouring tabs' frames
+    (where the radial segments are clamped), its sides keep ``MIN_GAP_MM`` from the tabs, and it
+    is closed by an arc of radius ``outer``.
+    """
+    e_r, e_s = tab_frames()
+    gap, rg = g.tab_half_width + MIN_GAP_MM, g.ground_radius
+
+    def at(k: int, r: float, s: float) -> np.ndarray:
+        return r * e_r[k] + s * e_s[k]
+
+    out = []
+    for k in range(3):
+        # j: the next tab counter-clockwise; tab k's s > 0 side and tab j's s < 0 side face it
+        ahead = [(a - TAB_ANGLES_DEG[k]) % 360 or 360 for a in TAB_ANGLES_DEG]
+        j = int(np.argmin(ahead))
+        p0, p1 = at(k, rg, gap), at(k, rg, np.sqrt(3) * rg)
+        p2, p3 = at(j, rg, -gap), at(j, outer, -gap)
+        a0, a1 = np.arctan2(*p3[::-1]), np.arctan2(*at(k, outer, gap)[::-1])
+        a1 = a1 if a1 < a0 else a1 - 2 * np.pi
+        arc = outer * np.c_[np.cos(np.linspace(a0, a1, n_arc)), np.sin(np.linspace(a0, a1, n_arc))]
+        out.append(np.vstack([p0, p1, p2, arc]))
     return out
 
 

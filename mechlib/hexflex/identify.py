@@ -1,21 +1,26 @@
 """Identify free dimensions of the HexFlex so that its compliance matches Eq 8's magnitudes.
 
-The four independent magnitudes of Eq 8 (issue specification) are matched in the least-squares
-sense on log-compliance (relative errors, scale-free), over a few free dimensions with bounds
-that keep the geometry physically sensible.
+Four independent magnitudes of Eq 8 — x←T1D1, z←T1D2, θx←T1D2 and |θz←T1D1| — fix, by the
+three-fold symmetry and the zero pattern, all 16 non-zero entries (up to Eq 8's own regression
+noise). They are matched on logarithms (relative errors, scale-free) over a few free dimensions
+within :data:`mechlib.hexflex.geometry.DIMENSION_BOUNDS`.
+
+Every FE evaluation builds and factorises a model (seconds), so the FE fit takes Newton steps
+whose Jacobian comes from a cheap surrogate — the reduced beam model
+(:mod:`mechlib.hexflex.frame`) — at the current geometry: one FE model per iteration, and the
+iteration converges as long as the surrogate's sensitivities are close to the FE's
+(:func:`log_sensitivity` of both is shown in the hexflex notebook).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass, fields
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 
-from mechlib.hexflex.geometry import HexFlexGeometry
-from mechlib.hexflex.model import HexFlexModel
-from mechlib.params import check_choice, check_int
+from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
+from mechlib.params import check_choice, check_float, check_int
 
 #: (row, column, sign) of the four independent magnitudes in the 6 × 6 compliance:
 #: x←T1D1, z←T1D2, θx←T1D2, θz←T1D1 (sign: θz←T1D1 is negative in Eq 8).
@@ -26,27 +31,10 @@ TARGET_LABELS: tuple[str, ...] = (
     "θx←T1D2 [µrad/N]",
     "|θz←T1D1| [µrad/N]",
 )
-#: Allowed range [mm] of each dimension during the fit.
-FIT_BOUNDS: dict[str, tuple[float, float]] = {
-    "thickness": (0.3, 5.0),
-    "beam_width": (0.3, 3.0),
-    "link_width": (0.3, 3.0),
-    "beam_length": (10.0, 40.0),
-    "link_length": (3.0, 15.0),
-    "tab_depth": (4.0, 20.0),
-}
+#: Largest Newton step of the FE fit in log-dimension (a factor e^0.3 ≈ 1.35 per iteration).
+MAX_LOG_STEP = 0.3
 
-
-#: Ranges [mm] of the design-space sample (:func:`design_space_sample`), wider than the fit's
-#: and including the links' radius ``arm_end``, the lever arm of the out-of-plane tilt.
-DESIGN_SPACE: dict[str, tuple[float, float]] = {
-    "thickness": (0.3, 3.0),
-    "beam_width": (0.3, 3.0),
-    "link_width": (0.3, 1.5),
-    "beam_length": (10.0, 40.0),
-    "link_length": (3.0, 15.0),
-    "arm_end": (10.5, 16.0),
-}
+ComplianceFn = Callable[[HexFlexGeometry], np.ndarray]
 
 
 def target_values(compliance: np.ndarray) -> np.ndarray:
@@ -55,9 +43,55 @@ def target_values(compliance: np.ndarray) -> np.ndarray:
     return np.array([s * c[i, j] for i, j, s in TARGET_ENTRIES])
 
 
+def check_free(free: Sequence[str]) -> list[str]:
+    """The free dimension names, each a field of :class:`HexFlexGeometry`, without repeats."""
+    names = [check_choice("free dimension", n, tuple(DIMENSION_BOUNDS)) for n in free]
+    if len(set(names)) != len(names) or not names:
+        raise ValueError(f"free dimensions must be distinct and at least one, got {list(free)}")
+    return names
+
+
+def check_target(target: object) -> np.ndarray:
+    """Four positive magnitudes."""
+    t = np.asarray(target, dtype=float)
+    if t.shape != (4,) or not np.all(np.isfinite(t)) or np.any(t <= 0):
+        raise ValueError(f"target must be 4 positive finite magnitudes, got {np.ravel(t).tolist()}")
+    return t
+
+
+def log_sensitivity(
+    compliance_fn: ComplianceFn,
+    g: HexFlexGeometry,
+    names: Sequence[str],
+    rel_step: float = 1e-3,
+) -> np.ndarray:
+    """d log(magnitude_i) / d log(dimension_j) (4, k) by central differences at ``g``.
+
+    Its singular values say how many combinations of the dimensions the four magnitudes fix.
+
+    Raises
+    ------
+    ValueError
+        If a name is not a dimension or ``rel_step`` is outside (0, 0.1].
+    """
+    names = check_free(names)
+    rel_step = check_float("rel_step", rel_step, low=0.0, high=0.1, low_open=True)
+    out = np.empty((4, len(names)))
+    for j, n in enumerate(names):
+        v = getattr(g, n)
+        up = target_values(compliance_fn(g.replace(**{n: v * np.exp(rel_step)})))
+        down = target_values(compliance_fn(g.replace(**{n: v * np.exp(-rel_step)})))
+        out[:, j] = (np.log(up) - np.log(down)) / (2 * rel_step)
+    return out
+
+
 @dataclass(frozen=True)
 class Identification:
-    """Result of :func:`identify`: geometry, achieved and target magnitudes, the fit history."""
+    """Result of :func:`identify`: geometry, achieved and target magnitudes, the fit history.
+
+    ``history`` has one row per FE evaluation: the free dimensions [mm], then the four
+    magnitudes.
+    """
 
     geometry: HexFlexGeometry
     achieved: np.ndarray
@@ -74,199 +108,86 @@ class Identification:
 def identify(
     start: HexFlexGeometry,
     target: np.ndarray,
-    free: Sequence[str] = ("thickness", "beam_width", "link_width", "beam_length"),
-    element: str = "q2",
-    max_evaluations: int = 40,
+    free: Sequence[str],
+    compliance_fn: ComplianceFn,
+    surrogate_fn: ComplianceFn,
+    max_evaluations: int = 8,
+    tol: float = 1e-3,
 ) -> Identification:
-    """Fit the ``free`` dimensions of ``start`` to the four target magnitudes (log least squares).
+    """Fit the ``free`` dimensions of ``start`` so that ``compliance_fn`` meets ``target``.
 
-    At most ``max_evaluations`` FE models are solved (finite-difference Jacobians included); the
-    best geometry seen is returned.
+    Newton iterations on r(x) = log(achieved / target), x = log(free dimensions), with the
+    Jacobian of ``surrogate_fn`` at the current geometry (minimum-norm step when more dimensions
+    are free than magnitudes, steps capped at ``MAX_LOG_STEP``, halved while the geometry is
+    invalid or leaves its bounds). Stops at max |r| <= ``tol`` or after ``max_evaluations`` calls
+    of ``compliance_fn``; returns the best geometry seen.
 
     Raises
     ------
     ValueError
-        If a free dimension is unknown or has no bounds, or ``target`` is not 4 positive values.
+        On an unknown or repeated free dimension, a bad target or budget.
     """
-    names = [f.name for f in fields(HexFlexGeometry)]
-    for name in free:
-        check_choice("free dimension", name, tuple(n for n in names if n in FIT_BOUNDS))
-    target = np.asarray(target, dtype=float)
-    if target.shape != (4,) or np.any(target <= 0):
-        raise ValueError(f"target must be 4 positive magnitudes, got {target.tolist()}")
-    max_evaluations = check_int("max_evaluations", max_evaluations, low=1, high=1000)
-    lo = np.log([FIT_BOUNDS[n][0] for n in free])
-    hi = np.log([FIT_BOUNDS[n][1] for n in free])
-    x0 = np.clip(np.log([getattr(start, n) for n in free]), lo, hi)
+    free = check_free(free)
+    target = check_target(target)
+    max_evaluations = check_int("max_evaluations", max_evaluations, low=1, high=100)
+    tol = check_float("tol", tol, low=0.0, high=1.0, low_open=True)
+    lo = np.log([DIMENSION_BOUNDS[n][0] for n in free])
+    hi = np.log([DIMENSION_BOUNDS[n][1] for n in free])
+    x = np.log([getattr(start, n) for n in free])
+    g = start
     history: list[np.ndarray] = []
-
-    def residual(logdims: np.ndarray) -> np.ndarray:
-        if len(history) >= max_evaluations:  # scipy does not count Jacobian evaluations
-            raise _BudgetSpent
-        g = start.replace(**dict(zip(free, np.exp(logdims), strict=True)))
-        achieved = target_values(HexFlexModel(g, element=element).compliance())
-        history.append(np.r_[np.exp(logdims), achieved])
-        return np.log(achieved / target)
-
-    try:
-        least_squares(residual, x0, bounds=(lo, hi), diff_step=1e-3)
-    except _BudgetSpent:
-        pass
+    for _ in range(max_evaluations):
+        achieved = target_values(compliance_fn(g))
+        history.append(np.r_[np.exp(x), achieved])
+        r = np.log(achieved / target)
+        if np.abs(r).max() <= tol or len(history) == max_evaluations:
+            break
+        step = -np.linalg.lstsq(log_sensitivity(surrogate_fn, g, free), r, rcond=None)[0]
+        step *= min(1.0, MAX_LOG_STEP / np.abs(step).max())
+        for _ in range(20):
+            trial = x + step
+            inside = np.all((trial >= lo) & (trial <= hi))
+            candidate = _valid(start, free, trial) if inside else None
+            if candidate is not None:
+                x, g = trial, candidate
+                break
+            step *= 0.5
+        else:
+            break  # no admissible step: stay at the best point
     hist = np.asarray(history)
-    cost = np.sum(np.log(hist[:, len(free) :] / target) ** 2, axis=1)
+    cost = np.max(np.abs(np.log(hist[:, len(free) :] / target)), axis=1)
     best_row = hist[int(np.argmin(cost))]
     best = start.replace(**dict(zip(free, best_row[: len(free)], strict=True)))
     return Identification(best, best_row[len(free) :], target, len(history), hist)
 
 
-class _BudgetSpent(Exception):
-    """Raised inside the residual when the evaluation budget is spent."""
+def _valid(start: HexFlexGeometry, free: list[str], logdims: np.ndarray) -> HexFlexGeometry | None:
+    try:
+        return start.replace(**dict(zip(free, np.exp(logdims), strict=True)))
+    except ValueError:
+        return None
 
 
-@dataclass(frozen=True)
-class DesignSample:
-    """Result of :func:`design_space_sample`.
+def recorded_geometry(notebook: str = "hexflex_model") -> HexFlexGeometry:
+    """The geometry a notebook recorded as ``geometry.<dimension>`` values (see ``records``)."""
+    from mechlib.records import recorded_value
 
-    ``dimensions`` (n, k) [mm] of the valid designs (columns ``names``), their ``achieved``
-    magnitudes (n, 4) in the order of :data:`TARGET_LABELS`, and ``n_invalid``, the drawn
-    designs the geometry rejected (overlapping legs).
-    """
-
-    names: tuple[str, ...]
-    dimensions: np.ndarray
-    achieved: np.ndarray
-    n_invalid: int
-
-    @property
-    def tilt_ratio(self) -> np.ndarray:
-        """θx←T1D2 / z←T1D2 of every design [µrad/µm = rad/m]."""
-        return self.achieved[:, 2] / self.achieved[:, 1]
-
-
-def design_space_sample(
-    start: HexFlexGeometry,
-    n: int,
-    seed: int,
-    space: dict[str, tuple[float, float]] | None = None,
-    element: str = "shell",
-    mesh_fraction: float = 1.0,
-) -> DesignSample:
-    """Compliance magnitudes over a seeded Latin hypercube of designs (log-uniform dimensions).
-
-    Every other dimension is that of ``start``. Designs the geometry rejects are skipped and
-    counted. The default element is the shell (about a second per design; within a few % of
-    Q2, see the hexflex notebook's convergence table).
-
-    Raises
-    ------
-    ValueError
-        If ``n`` is outside [1, 2000], a range is empty or not positive, or a name is not a
-        dimension.
-    """
-    from scipy.stats import qmc
-
-    space = DESIGN_SPACE if space is None else space
-    n = check_int("n", n, low=1, high=2000)
-    names = tuple(space)
-    dims = {f.name for f in fields(HexFlexGeometry)}
-    for name, (lo, hi) in space.items():
-        check_choice("design-space dimension", name, tuple(sorted(dims)))
-        if not 0 < lo < hi:
-            raise ValueError(
-                f"design-space range of {name} must satisfy 0 < low < high, got {(lo, hi)}"
-            )
-    lo = np.log([space[k][0] for k in names])
-    hi = np.log([space[k][1] for k in names])
-    draws = np.exp(qmc.scale(qmc.LatinHypercube(d=len(names), seed=seed).random(n), lo, hi))
-    kept, achieved, invalid = [], [], 0
-    for x in draws:
-        try:
-            g = start.replace(**dict(zip(names, x, strict=True)))
-        except ValueError:
-            invalid += 1
-            continue
-        size = mesh_fraction * min(g.beam_width, g.link_width)
-        model = HexFlexModel(g, element=element, mesh_size=size)
-        achieved.append(target_values(model.compliance()))
-        kept.append(x)
-    return DesignSample(names, np.array(kept), np.array(achieved), invalid)
+    return HexFlexGeometry.from_dict(
+        {n: recorded_value(notebook, f"geometry.{n}") for n in DIMENSION_BOUNDS}
+    )
 
 
 def at_bounds(geometry: HexFlexGeometry, free: Sequence[str], rtol: float = 0.01) -> list[str]:
-    """The ``free`` dimensions of ``geometry`` within ``rtol`` of one of their ``FIT_BOUNDS``."""
+    """The ``free`` dimensions of ``geometry`` within ``rtol`` of one of their bounds."""
     return [
-        n for n in free if min(abs(getattr(geometry, n) / b - 1.0) for b in FIT_BOUNDS[n]) < rtol
+        n
+        for n in free
+        if min(abs(getattr(geometry, n) / b - 1.0) for b in DIMENSION_BOUNDS[n]) < rtol
     ]
 
 
-def convergence_changes(
-    rows: list[dict[str, object]], chosen_fraction: float, coarse_widths: float
-) -> dict[str, object]:
-    """Largest relative changes of the four target magnitudes in a mesh-convergence study.
-
-    Parameters
-    ----------
-    rows : list of dict
-        Output of :func:`mechlib.hexflex.model.convergence` (Q2 rows over flexure fractions at
-        ``coarse_widths``; optionally Q2 rows with another ``coarse_widths`` and shell rows).
-    chosen_fraction : float
-        The flexure fraction of the model in use; must be one of the Q2 fractions.
-    coarse_widths : float
-        Largest element of the flexure-refinement series, in narrowest beam widths.
-
-    Returns
-    -------
-    dict
-        ``fractions`` (coarse to fine), ``steps`` (change at each refinement), ``next`` (chosen →
-        next finer; NaN if the chosen mesh is the finest), ``finest`` (chosen → finest),
-        ``coarse_region`` (chosen → same flexures with another free-region size; NaN if absent),
-        ``shell_vs_q2`` (on the finest flexure mesh; NaN if no shell row).
-
-    Raises
-    ------
-    ValueError
-        If the chosen fraction is not in the Q2 series.
-    """
-
-    def mags(r: dict[str, object]) -> np.ndarray:
-        return target_values(np.asarray(r["compliance"]))
-
-    def change(a: np.ndarray, b: np.ndarray) -> float:
-        return float(np.max(np.abs(a / b - 1.0)))
-
-    series = sorted(
-        (r for r in rows if r["element"] == "q2" and r["coarse_widths"] == coarse_widths),
-        key=lambda r: -float(r["fraction"]),
-    )
-    fractions = [float(r["fraction"]) for r in series]
-    match = [i for i, f in enumerate(fractions) if np.isclose(f, chosen_fraction, rtol=1e-9)]
-    if not match:
-        raise ValueError(
-            f"chosen_fraction must be one of the Q2 fractions {fractions}, got {chosen_fraction}"
-        )
-    k = match[0]
-    values = [mags(r) for r in series]
-    steps = [change(values[i + 1], values[i]) for i in range(len(values) - 1)]
-    others = [
-        r
-        for r in rows
-        if r["element"] == "q2"
-        and r["coarse_widths"] != coarse_widths
-        and np.isclose(float(r["fraction"]), chosen_fraction, rtol=1e-9)
-    ]
-    shells = [
-        r
-        for r in rows
-        if r["element"] == "shell"
-        and r["coarse_widths"] == coarse_widths
-        and np.isclose(float(r["fraction"]), fractions[-1], rtol=1e-9)
-    ]
-    nan = float("nan")
-    return {
-        "fractions": fractions,
-        "steps": steps,
-        "next": steps[k] if k < len(steps) else nan,
-        "finest": change(values[k], values[-1]),
-        "coarse_region": change(mags(others[0]), values[k]) if others else nan,
-        "shell_vs_q2": change(mags(shells[0]), values[-1]) if shells else nan,
-    }
+def entry_ratios(compliance: np.ndarray, published: np.ndarray) -> np.ndarray:
+    """compliance / published for every non-zero published entry (row-major order)."""
+    c, p = np.asarray(compliance, dtype=float), np.asarray(published, dtype=float)
+    nz = p != 0
+    return c[nz] / p[nz]

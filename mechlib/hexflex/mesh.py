@@ -15,7 +15,7 @@ from scipy.spatial import cKDTree
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_float
 
-#: Element growth from the beams to the stage and tabs.
+#: Element growth from the flexures to the stage and tabs.
 COARSENING = 4.0
 #: Length-to-width ratio of the structured elements at the ends of the beams and links.
 BEAM_ASPECT = 2.0
@@ -37,37 +37,73 @@ class PlanarMesh:
     quads: np.ndarray
 
 
+def structured_pieces(g: HexFlexGeometry, size: float) -> list[tuple[tuple, tuple, tuple]]:
+    """The flexure rectangles of the half-leg and their structured gmsh grids.
+
+    Returns
+    -------
+    list of (rect, s_spec, r_spec)
+        ``rect`` = ``(r0, r1, s0, s1)`` [mm]; ``s_spec`` and ``r_spec`` = ``(nodes, bump)`` of the
+        curves running along ``s`` and along ``r``: gmsh node count (before the all-quad
+        subdivision doubles the elements) and the "Bump" end/middle ratio, or None for uniform.
+        Shared curves get the same count: the corner takes the D1 segment's count across it
+        along ``r`` and the radial segment's along ``s``.
+    """
+    rects = g.rectangles()
+    (beam,), (corner,), (radial,) = rects["beam"], rects["corner"], rects["radial"]
+    across_b = _across(g.beam_width, size)
+    across_r = _across(g.radial_width, size)
+    along_b = _along(g.beam_width, across_b, beam[3] - beam[2])
+    along_r = _along(g.radial_width, across_r, radial[1] - radial[0])
+    return [
+        (beam, along_b, (across_b + 1, None)),
+        (corner, (across_r + 1, None), (across_b + 1, None)),
+        (radial, (across_r + 1, None), along_r),
+    ]
+
+
+def _across(width: float, size: float) -> int:
+    """gmsh elements across a flexure (doubled by the subdivision: an even count >= 2)."""
+    return int(np.ceil(width / (2 * size) - 1e-9))
+
+
+def _along(width: float, across: int, length: float) -> tuple[int, float | None]:
+    """gmsh nodes along a flexure and its bump ratio (None: uniform)."""
+    end, middle = _along_sizes(width, across)
+    if end / middle < 1.0 and length > 4 * middle:  # graded: `end` at both ends, ~`middle` mid-way
+        return int(np.ceil(BUMP_FACTOR * length / middle)) + 1, end / middle
+    return int(np.ceil(length / end - 1e-9)) + 1, None
+
+
 def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING) -> PlanarMesh:
     """All-quad mesh of the 30°–90° sector: structured in the flexures, free elsewhere.
 
-    Every beam and link is a structured grid with an even number of elements across its width
-    (at most ``size`` [mm] wide, at least two); along it the elements are ``BEAM_ASPECT`` times
-    longer than wide at both ends and grow toward ``MID_WIDTHS`` flexure widths mid-way. The
-    stage, arm and tab are meshed freely with elements growing from ``size`` at the flexures'
-    corners to ``coarsening * size``.
+    Every flexure segment (D1 segment, corner, radial segment) is a structured grid with an even
+    number of elements across its width (at most ``size`` [mm] wide, at least two); along it
+    the elements are ``BEAM_ASPECT`` times longer than wide at both ends and grow toward
+    ``MID_WIDTHS`` flexure widths mid-way. The stage and tab are meshed freely with elements
+    growing from ``size`` at the flexures' corners to ``coarsening * size``.
 
     Raises
     ------
     ValueError
-        If ``size`` is larger than the narrowest beam or not positive.
+        If ``size`` is larger than the narrowest flexure or not positive.
     """
-    narrowest = min(g.beam_width, g.link_width)
-    size = check_float("mesh_size [mm]", size, low=0.0, high=narrowest, low_open=True)
+    size = check_float("mesh_size [mm]", size, low=0.0, high=g.narrowest, low_open=True)
     import gmsh
 
-    rects = g.rectangles()
-    flexures = [(r, "beam") for r in rects["beam"]] + [(r, "link") for r in rects["link"]]
+    pieces = structured_pieces(g, size)
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("hexflex_sector")
         occ = gmsh.model.occ
         tags, fine = [], []
-        for part, part_rects in rects.items():
+        for part_rects in g.rectangles().values():
             for r0, r1, s0, s1 in part_rects:  # leg T1: global (x, y) = (s, r)
                 tags.append((2, occ.addRectangle(s0, r0, 0.0, s1 - s0, r1 - r0)))
-                if part in ("beam", "link"):
-                    fine += [(s0, r0), (s1, r0), (s0, r1), (s1, r1)]
+        for (r0, r1, s0, s1), _, _ in pieces:
+            fine += [(s0, r0), (s1, r0), (s0, r1), (s1, r1)]
         mid = 0.5 * g.stage_radius * np.array([np.cos(np.pi / 6), np.sin(np.pi / 6)])
         pts = [occ.addPoint(0, 0, 0), occ.addPoint(*mid, 0), occ.addPoint(0, g.stage_radius, 0)]
         lines = [occ.addLine(pts[i], pts[(i + 1) % 3]) for i in range(3)]
@@ -81,33 +117,22 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
         # sizes handed to gmsh are doubled: the all-quad subdivision below halves every element
         for dim, tag in surfaces:
             s_c, r_c, _ = occ.getCenterOfMass(dim, tag)
-            for (r0, r1, s0, s1), kind in flexures:
+            for (r0, r1, s0, s1), s_spec, r_spec in pieces:
                 if not (r0 < r_c < r1 and s0 < s_c < s1):
                     continue
-                width, length = (s1 - s0, r1 - r0) if kind == "beam" else (r1 - r0, s1 - s0)
-                across = int(np.ceil(width / (2 * size) - 1e-9))
-                end, middle = _along_sizes(width, across)
-                along = int(np.ceil(length / end - 1e-9))
-                bump = end / middle < 1.0 and length > 4 * middle
-                if bump:  # graded: `end` at both ends, about `middle` mid-way
-                    along = int(np.ceil(BUMP_FACTOR * length / middle))
                 for _, curve in gmsh.model.getBoundary([(dim, tag)], oriented=False):
                     x0, y0, _, x1, y1, _ = gmsh.model.getBoundingBox(1, curve)
-                    if ((y1 - y0) > (x1 - x0)) == (kind == "beam"):  # runs along the flexure
-                        if bump:
-                            gmsh.model.mesh.setTransfiniteCurve(
-                                curve, along + 1, "Bump", end / middle
-                            )
-                        else:
-                            gmsh.model.mesh.setTransfiniteCurve(curve, along + 1)
+                    nodes, bump = s_spec if (x1 - x0) > (y1 - y0) else r_spec
+                    if bump is None:
+                        gmsh.model.mesh.setTransfiniteCurve(curve, nodes)
                     else:
-                        gmsh.model.mesh.setTransfiniteCurve(curve, across + 1)
+                        gmsh.model.mesh.setTransfiniteCurve(curve, nodes, "Bump", bump)
                 gmsh.model.mesh.setTransfiniteSurface(tag)
         coarse = max(size, coarsening * size)
         fine_xy = np.asarray(fine)
         for dim_tag in gmsh.model.getEntities(0):
             xyz = gmsh.model.getValue(0, dim_tag[1], [])
-            near = np.min(np.hypot(*(fine_xy - xyz[:2]).T)) < 1e-6 * g.ground_radius
+            near = np.min(np.hypot(*(fine_xy - xyz[:2]).T)) < 1e-6 * g.tab_outer
             gmsh.model.mesh.setSize([dim_tag], 2 * (size if near else coarse))
         gmsh.option.setNumber("Mesh.MeshSizeMax", 2 * coarse)
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 1)

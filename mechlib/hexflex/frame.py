@@ -1,0 +1,399 @@
+"""Reduced beam model of the HexFlex: six L-shaped beams carrying one rigid body.
+
+A small 3-D frame solver (2-node beams, 6 DOF per node, rectangular sections, Euler–Bernoulli
+or Timoshenko, rigid-body constraints by a transformation matrix, clamped nodes) and its use on
+:class:`~mechlib.hexflex.geometry.HexFlexGeometry`: the stage and tabs are one rigid body whose
+*master* node sits at the stage centre; the six beams' attachment points are its *slaves*. Each
+beam is a D1 segment (``beam_width``) from the tab's side to the corner and a radial segment
+(``radial_width``) from the corner to the clamp, on the centre lines of ``geometry.py``.
+
+Units: mm, N, MPa; compliances in µm/N and µrad/N as the FE model's. A frame ignores the corner
+blocks, the joints' finite widths and the stage's own compliance: it is a fast first guess
+(:func:`prefit`) and a sensitivity study (:func:`log_sensitivity`), not a replacement for FE.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sl
+from scipy.optimize import least_squares
+
+from mechlib.hexflex import geometry as geo
+from mechlib.params import check_choice, check_float, check_int, check_matrix
+
+#: Al 7075-T6 defaults [MPa], [-]: the same values as ``model.AL7075_YOUNG_MPA`` / ``_POISSON``
+#: (not imported, to keep this module free of the FE stack; a test checks they agree).
+AL7075_YOUNG_MPA = 71_700.0
+AL7075_POISSON = 0.33
+#: Timoshenko shear correction factor of a rectangle (Cowper's ν-free value, 5/6).
+SHEAR_FACTOR = 5.0 / 6.0
+#: Roark's torsion constant of a rectangle: J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))].
+ROARK_THIRD, ROARK_C1, ROARK_C2 = 1.0 / 3.0, 0.21, 1.0 / 12.0
+#: Unit conversions of the output: mm → µm, rad → µrad, and mm⁻¹ → m⁻¹.
+UM_PER_MM, URAD_PER_RAD, MM_PER_M = 1e3, 1e6, 1e3
+#: Names of the four magnitudes fitted by :func:`prefit` and their (row, column, sign) in C.
+MAGNITUDES: tuple[str, ...] = ("x<-T1D1", "z<-T1D2", "thx<-T1D2", "|thz<-T1D1|")
+_MAG_INDEX = ((0, 0, 1.0), (2, 1, 1.0), (3, 1, 1.0), (5, 0, -1.0))
+#: Residual [log units] of a geometry the constructor rejects (e¹⁰ ≈ 2·10⁴ times off).
+INFEASIBLE_RESIDUAL = 10.0
+#: Largest number of elements per beam segment and largest relative finite-difference step.
+MAX_ELEMENTS, MAX_REL_STEP = 64, 0.1
+#: An element is "along z" (no local y axis) if |z × axis| ≤ PARALLEL_TOL · length.
+PARALLEL_TOL = 1e-12
+_NDOF, _UP = 6, np.array([0.0, 0.0, 1.0])  # DOF per node; the planar frames' normal (local z)
+_PAIR = np.array([[1.0, -1.0], [-1.0, 1.0]])
+_AXIAL, _TWIST = np.ix_([0, 6], [0, 6]), np.ix_([3, 9], [3, 9])
+_BEND_Y, _BEND_Z = np.ix_([1, 5, 7, 11], [1, 5, 7, 11]), np.ix_([2, 4, 8, 10], [2, 4, 8, 10])
+
+
+# --- generic frame --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Frame:
+    """A frame of 2-node beams with rectangular sections.
+
+    Attributes
+    ----------
+    nodes : ndarray (n, 3)
+        Node coordinates [mm].
+    elements : ndarray (m, 2) of int
+        Node indices of each beam.
+    widths, depths : ndarray (m,)
+        Section sides [mm]: ``width`` along the local y axis (``up × axis``, in the plane for a
+        planar frame), ``depth`` along the local z axis (``up`` for a planar frame).
+    clamped : tuple of int
+        Nodes with all six DOF fixed.
+    rigid : mapping int -> tuple of int
+        Rigid bodies: master node → slave nodes, ``u_s = u_m + θ_m × (x_s − x_m)``, ``θ_s = θ_m``.
+    """
+
+    nodes: np.ndarray
+    elements: np.ndarray
+    widths: np.ndarray
+    depths: np.ndarray
+    clamped: tuple[int, ...] = ()
+    rigid: Mapping[int, tuple[int, ...]] = field(default_factory=dict)
+
+
+def torsion_constant(width: float, depth: float) -> float:
+    """Saint-Venant torsion constant [mm⁴] of a ``width × depth`` rectangle.
+
+    Roark's Formulas for Stress and Strain (7th ed., Table 10.7, case 4), written with the full
+    long side ``a`` and short side ``b``: ``J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))]``.
+    """
+    a, b = max(width, depth), min(width, depth)
+    return a * b**3 * (ROARK_THIRD - ROARK_C1 * (b / a) * (1 - ROARK_C2 * (b / a) ** 4))
+
+
+def element_stiffness(
+    p0: np.ndarray,
+    p1: np.ndarray,
+    width: float,
+    depth: float,
+    young: float,
+    poisson: float,
+    shear: bool = True,
+) -> np.ndarray:
+    """Global 12 × 12 stiffness of a straight beam (Przemieniecki's exact Timoshenko element).
+
+    DOF order ``(u, v, w, θx, θy, θz)`` of node 0 then node 1. With ``shear=False`` it is the
+    Euler–Bernoulli element. Both are exact for loads applied at the nodes.
+    """
+    axis = np.asarray(p1, float) - np.asarray(p0, float)
+    length = float(np.linalg.norm(axis))
+    side = np.cross(_UP, axis)
+    if length <= 0 or np.linalg.norm(side) <= PARALLEL_TOL * length:
+        raise ValueError(f"element from {p0} to {p1} must have length > 0 and not be along z")
+    e1, e2 = axis / length, side / np.linalg.norm(side)
+    rot = np.array([e1, e2, np.cross(e1, e2)])
+    shear_mod, area, L = young / (2 * (1 + poisson)), width * depth, length
+    k = np.zeros((12, 12))
+    k[_AXIAL] = young * area / L * _PAIR
+    k[_TWIST] = shear_mod * torsion_constant(width, depth) / L * _PAIR
+    # (v, θz): bending about local z, I = depth·width³/12; (w, θy): θy = −w' flips the signs
+    for idx, inertia, signs in (
+        (_BEND_Y, depth * width**3 / 12, np.array([1.0, 1, 1, 1])),
+        (_BEND_Z, width * depth**3 / 12, np.array([1.0, -1, 1, -1])),
+    ):
+        phi = 12 * young * inertia / (SHEAR_FACTOR * shear_mod * area * L**2) if shear else 0.0
+        m = np.array([
+            [12, 6 * L, -12, 6 * L],
+            [6 * L, (4 + phi) * L**2, -6 * L, (2 - phi) * L**2],
+            [-12, -6 * L, 12, -6 * L],
+            [6 * L, (2 - phi) * L**2, -6 * L, (4 + phi) * L**2],
+        ])  # fmt: skip
+        k[idx] = young * inertia / ((1 + phi) * L**3) * np.outer(signs, signs) * m
+    big = np.kron(np.eye(4), rot)
+    return big.T @ k @ big
+
+
+def node_reduction(frame: Frame) -> tuple[np.ndarray, np.ndarray, int]:
+    """How each node's 6 DOF follow the free unknowns: ``u_node = block @ u_free[col : col + 6]``.
+
+    Returns ``col`` (n,) (−1 for a clamped node), ``block`` (n, 6, 6) (identity, or for a slave
+    the rigid map ``[[I, −[d]×], [0, I]]`` of its master's DOF, ``d = x_s − x_m``) and the number
+    of free unknowns. This is the transformation ``u_full = T u_free`` stored node by node.
+    """
+    n = len(frame.nodes)
+    clamped = set(frame.clamped)
+    slave_of = {s: m for m, slaves in frame.rigid.items() for s in slaves}
+    for m in frame.rigid:
+        if m in slave_of or m in clamped:
+            raise ValueError(f"rigid master node {m} must be neither a slave nor clamped")
+    if clamped & set(slave_of):
+        raise ValueError(f"nodes {sorted(clamped & set(slave_of))} cannot be clamped and slaves")
+    own = [i for i in range(n) if i not in clamped and i not in slave_of]
+    col = np.full(n, -1)
+    col[own] = _NDOF * np.arange(len(own))
+    block = np.tile(np.eye(_NDOF), (n, 1, 1))
+    for s, m in slave_of.items():  # u_s = u_m + θ_m × d = u_m − [d]× θ_m
+        d = frame.nodes[s] - frame.nodes[m]
+        block[s, :3, 3:] = -np.array([[0, -d[2], d[1]], [d[2], 0, -d[0]], [-d[1], d[0], 0]])
+        col[s] = col[m]
+    return col, block, _NDOF * len(own)
+
+
+def solve_frame(
+    frame: Frame, young: float, poisson: float, loads: np.ndarray, shear: bool = True
+) -> np.ndarray:
+    """Nodal displacements and rotations of a linear frame.
+
+    Parameters
+    ----------
+    frame : Frame
+    young, poisson : float
+        Young's modulus [MPa], > 0, and Poisson's ratio, in (−1, 0.5).
+    loads : ndarray (..., n, 6)
+        Nodal forces [N] and moments [N·mm]; leading axes are load cases.
+    shear : bool
+        Timoshenko shear deformation (κ = 5/6) if true, Euler–Bernoulli if false.
+
+    Returns
+    -------
+    ndarray, the shape of ``loads``
+        ``(u, v, w, θx, θy, θz)`` per node [mm, rad].
+
+    Raises
+    ------
+    ValueError
+        For bad material constants or loads, or a frame that is a mechanism.
+    """
+    young, poisson = _check_material(young, poisson)
+    f = np.asarray(loads, dtype=float)
+    n = len(frame.nodes)
+    if f.shape[-2:] != (n, _NDOF) or not np.all(np.isfinite(f)):
+        raise ValueError(f"loads must be finite with shape (..., {n}, 6), got {f.shape}")
+    col, block, m = node_reduction(frame)
+    k = np.zeros((m, m))
+    for (a, b), w, d in zip(frame.elements, frame.widths, frame.depths, strict=True):
+        ke = element_stiffness(frame.nodes[a], frame.nodes[b], w, d, young, poisson, shear)
+        for i, p in ((0, a), (1, b)):
+            for j, q in ((0, a), (1, b)):
+                if col[p] >= 0 and col[q] >= 0:
+                    kij = ke[_NDOF * i : _NDOF * i + _NDOF, _NDOF * j : _NDOF * j + _NDOF]
+                    k[col[p] : col[p] + _NDOF, col[q] : col[q] + _NDOF] += (
+                        block[p].T @ kij @ block[q]
+                    )
+    cases = f.reshape(-1, n, _NDOF)
+    rhs = np.zeros((m, len(cases)))
+    for p in np.flatnonzero(col >= 0):
+        rhs[col[p] : col[p] + _NDOF] += block[p].T @ cases[:, p, :].T
+    try:
+        u = sl.solve(k, rhs, assume_a="pos")
+    except np.linalg.LinAlgError as err:
+        raise ValueError("the frame is a mechanism (singular reduced stiffness)") from err
+    out = np.zeros_like(cases)
+    for p in np.flatnonzero(col >= 0):
+        out[:, p, :] = (block[p] @ u[col[p] : col[p] + _NDOF]).T
+    return out.reshape(f.shape)
+
+
+def _check_material(young: float, poisson: float) -> tuple[float, float]:
+    young = check_float("young [MPa]", young, low=0.0, low_open=True)
+    poisson = check_float("poisson", poisson, low=-1.0, low_open=True)
+    if poisson >= 0.5:
+        raise ValueError(f"poisson must be in (-1, 0.5), got {poisson!r}")
+    return young, poisson
+
+
+# --- HexFlex --------------------------------------------------------------------------------
+def hexflex_frame(g: geo.HexFlexGeometry, n_elements: int = 1) -> Frame:
+    """The HexFlex as a frame: node 0 the rigid body's master at the origin (the stage centre).
+
+    Per beam (tab k, side σ = ±1, in the tab's ``(r, s)`` frame): attachment ``(ρ, σ s₀)`` (a
+    slave of node 0) → corner ``(ρ, σ (s₀ + L₁))`` → clamp ``(ρ + L₂, σ (s₀ + L₁))``, each
+    segment split into ``n_elements`` beams.
+    """
+    n_el = check_int("n_elements", n_elements, low=1, high=MAX_ELEMENTS)
+    e_r, e_s = geo.tab_frames()
+    nodes, elements, widths, slaves, clamped = [np.zeros(3)], [], [], [], []
+    steps = np.linspace(0, 1, n_el + 1)[1:]
+    for k in range(3):
+        for sigma in (1.0, -1.0):
+            attach = np.r_[g.beam_radius * e_r[k] + sigma * g.tab_half_width * e_s[k], 0.0]
+            corner = np.r_[g.beam_radius * e_r[k] + sigma * g.corner_s * e_s[k], 0.0]
+            clamp = np.r_[g.ground_radius * e_r[k] + sigma * g.corner_s * e_s[k], 0.0]
+            slaves.append(len(nodes))
+            nodes.append(attach)
+            segments = ((attach, corner, g.beam_width), (corner, clamp, g.radial_width))
+            for start, end, width in segments:
+                for t in steps:
+                    nodes.append(start + t * (end - start))
+                    elements.append((len(nodes) - 2, len(nodes) - 1))
+                    widths.append(width)
+            clamped.append(len(nodes) - 1)
+    depths = np.full(len(widths), g.thickness)
+    return Frame(np.array(nodes), np.array(elements), np.array(widths), depths, tuple(clamped),
+                 {0: tuple(slaves)})  # fmt: skip
+
+
+def actuator_wrenches(g: geo.HexFlexGeometry) -> np.ndarray:
+    """(6, 6) wrenches at the origin, ``[F; r × F]`` [N, N·mm], of the six unit actuator forces."""
+    points = np.c_[geo.actuator_points(g), np.zeros(3)]
+    forces = geo.actuator_directions()
+    arms = np.repeat(points, 2, axis=0)
+    return np.vstack([forces.T, np.cross(arms, forces).T])
+
+
+def stage_compliance(
+    g: geo.HexFlexGeometry,
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+    shear: bool = True,
+    n_elements: int = 1,
+) -> np.ndarray:
+    """(6, 6) compliance of the rigid body at the origin [mm, rad per N, N·mm] (symmetric)."""
+    frame = hexflex_frame(g, n_elements)
+    loads = np.zeros((_NDOF, len(frame.nodes), _NDOF))
+    loads[:, 0, :] = np.eye(_NDOF)
+    return solve_frame(frame, young, poisson, loads, shear)[:, 0, :].T
+
+
+def hexflex_frame_compliance(
+    g: geo.HexFlexGeometry,
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+    shear: bool = True,
+    n_elements: int = 1,
+) -> np.ndarray:
+    """(6, 6) compliance [µm/N, µrad/N]: rows x, y, z, θx, θy, θz of the stage centre, columns
+    the unit actuator forces T1D1, T1D2, T2D1, T2D2, T3D1, T3D2 (Eq 4), as the FE model's."""
+    scale = np.r_[np.full(3, UM_PER_MM), np.full(3, URAD_PER_RAD)][:, None]
+    return scale * (stage_compliance(g, young, poisson, shear, n_elements) @ actuator_wrenches(g))
+
+
+def magnitudes(compliance: np.ndarray) -> np.ndarray:
+    """The four fitted magnitudes ``C[0,0], C[2,1], C[3,1], −C[5,0]`` (see :data:`MAGNITUDES`)."""
+    c = check_matrix("compliance", compliance, shape=(6, 6))
+    return np.array([sign * c[i, j] for i, j, sign in _MAG_INDEX])
+
+
+def tilt_to_lift_bound(g: geo.HexFlexGeometry) -> float:
+    """Upper bound [rad/m] of θx←T1D2 / z←T1D2: the rigid body on six vertical point springs.
+
+    Six identical springs k at the attachment points ``p_i`` (no rotational stiffness), a unit
+    force along z at ``(0, R_t)`` (T1's external edge). Vertical balance: ``z = 1/(6k)`` (the
+    points' centroid is the origin). Moment balance: the tilt stiffness is ``k Σ p_i p_iᵀ``; by
+    the three-fold symmetry this 2 × 2 tensor is isotropic, ``k/2 Σ |p_i|² I = 3k(ρ² + s₀²) I``
+    (each ``|p_i|² = ρ² + s₀²``), and the load's moment is ``M_x = R_t``, so
+    ``θx = R_t / (3k(ρ² + s₀²))`` and ``θx / z = 2 R_t / (ρ² + s₀²)`` [mm⁻¹], ×1e3 for rad/m.
+    Beams also resist the tilt by their rotational stiffness, which lowers the ratio.
+    """
+    return 2 * g.tab_outer / (g.beam_radius**2 + g.tab_half_width**2) * MM_PER_M
+
+
+def _check_names(names: Sequence[str], what: str) -> tuple[str, ...]:
+    names = tuple(names)
+    if not names or len(set(names)) != len(names):
+        raise ValueError(f"{what} must list distinct dimension names, got {list(names)}")
+    return tuple(check_choice(what, n, geo.DIMENSION_BOUNDS) for n in names)
+
+
+def prefit(
+    target: Sequence[float],
+    start: geo.HexFlexGeometry,
+    free: Sequence[str],
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    shear: bool = True,
+) -> tuple[geo.HexFlexGeometry, np.ndarray]:
+    """Fit the ``free`` dimensions of ``start`` so the frame reaches the four ``target`` magnitudes.
+
+    Least squares (scipy's ``dogbox``) on ``log(achieved / target)`` over the logs of the free
+    dimensions, within ``bounds`` (default :data:`geometry.DIMENSION_BOUNDS`). Geometries the
+    constructor rejects give a residual of :data:`INFEASIBLE_RESIDUAL` in every component.
+
+    Parameters
+    ----------
+    target : sequence of 4 floats > 0
+        x←T1D1 [µm/N], z←T1D2 [µm/N], θx←T1D2 [µrad/N], |θz←T1D1| [µrad/N].
+    start : HexFlexGeometry
+        Start point; the dimensions not in ``free`` (names to fit) stay fixed.
+    free : sequence of str
+    young, poisson, shear
+        As in :func:`hexflex_frame_compliance`.
+    bounds : mapping name -> (low, high), optional
+        Bounds [mm] of the free dimensions; must contain ``start``'s values.
+
+    Returns
+    -------
+    geometry : HexFlexGeometry
+    achieved : ndarray (4,)
+        The frame's magnitudes at ``geometry``.
+
+    Raises
+    ------
+    ValueError
+        Bad target, names, bounds or material constants.
+    """
+    tgt = np.asarray(target, dtype=float)
+    if tgt.shape != (4,) or not np.all(np.isfinite(tgt)) or np.any(tgt <= 0):
+        raise ValueError(f"target must be 4 finite values > 0 {MAGNITUDES}, got {target}")
+    free = _check_names(free, "free")
+    young, poisson = _check_material(young, poisson)
+    bounds = geo.DIMENSION_BOUNDS if bounds is None else bounds
+    lo, hi = np.array([bounds.get(n, (np.nan, np.nan)) for n in free], dtype=float).T
+    if not np.all((lo > 0) & (lo < hi)):  # also catches a missing name (NaN)
+        raise ValueError(f"bounds must give 0 < low < high [mm] for each of {free}, got {bounds}")
+    x0 = np.log([getattr(start, n) for n in free])
+    if np.any(x0 < np.log(lo)) or np.any(x0 > np.log(hi)):
+        raise ValueError(f"start must lie within bounds for {list(free)}, got {start}")
+
+    def geometry_at(x: np.ndarray) -> geo.HexFlexGeometry:
+        return start.replace(**dict(zip(free, np.clip(np.exp(x), lo, hi).tolist(), strict=True)))
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        try:
+            g = geometry_at(x)
+        except ValueError:
+            return np.full(4, INFEASIBLE_RESIDUAL)
+        return np.log(np.abs(magnitudes(hexflex_frame_compliance(g, young, poisson, shear)) / tgt))
+
+    # dogbox: 20-30 evaluations; trf crawled on this rank-deficient fit (measured: > 1000)
+    sol = least_squares(residual, x0, bounds=(np.log(lo), np.log(hi)), method="dogbox")
+    g = geometry_at(sol.x)
+    return g, magnitudes(hexflex_frame_compliance(g, young, poisson, shear))
+
+
+def log_sensitivity(
+    compliance_fn: Callable[[geo.HexFlexGeometry], np.ndarray],
+    g: geo.HexFlexGeometry,
+    names: Sequence[str],
+    rel_step: float = 1e-3,
+) -> np.ndarray:
+    """(4, k) central differences ``d log|magnitude_i| / d log(dimension_j)`` at ``g``.
+
+    ``compliance_fn(geometry)`` returns a (6, 6) compliance (this frame model, an FE model...);
+    dimension j is scaled by ``exp(±rel_step)``. The singular values of the result tell how many
+    combinations of ``names`` the four magnitudes of Eq 8 determine.
+    """
+    names = _check_names(names, "names")
+    h = check_float("rel_step", rel_step, low=0.0, high=MAX_REL_STEP, low_open=True)
+    out = np.empty((len(MAGNITUDES), len(names)))
+    for j, name in enumerate(names):
+        up, down = (g.replace(**{name: getattr(g, name) * np.exp(s)}) for s in (h, -h))
+        out[:, j] = np.log(np.abs(magnitudes(compliance_fn(up)) / magnitudes(compliance_fn(down))))
+    return out / (2 * h)
