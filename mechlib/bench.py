@@ -132,9 +132,7 @@ def _chapter_spec():
         g, source = recorded_geometry(), "identified"
     except (FileNotFoundError, KeyError):
         g, source = _bench_geometry(), "bench"
-    return ex.ModelSpec(
-        g, mesh_size=DEFAULT_MESH_FRACTION * g.narrowest
-    ), source
+    return ex.ModelSpec(g, mesh_size=DEFAULT_MESH_FRACTION * g.narrowest), source
 
 
 def nonlinear_run_counts() -> dict[str, int]:

@@ -62,15 +62,15 @@ def fe_tip(
     tip_length: float | None = None,
 ) -> float:
     """Mean tip deflection per unit force [mm/N] of the Q2 one-layer model of the beam."""
+    from mechlib.hexflex.problem import QUAD_ORDER, integral, quiet_sfepy
+
+    quiet_sfepy()  # before the first SfePy import prints its notices
     from sfepy.discrete import Equation, Equations, FieldVariable, Material, Problem
     from sfepy.discrete.conditions import Conditions, EssentialBC
     from sfepy.discrete.fem import FEDomain, Field, Mesh
     from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
     from sfepy.terms import Term
 
-    from mechlib.hexflex.problem import QUAD_ORDER, integral, quiet_sfepy
-
-    quiet_sfepy()
     direction = check_choice("direction", direction, ("in_plane", "out_of_plane"))
     n_width = check_int("n_width", n_width, low=1, high=64)
     for name, v in (("length", length), ("width", width), ("thickness", thickness)):

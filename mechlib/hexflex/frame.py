@@ -9,12 +9,13 @@ beam is a D1 segment (``beam_width``) from the tab's side to the corner and a ra
 
 Units: mm, N, MPa; compliances in µm/N and µrad/N as the FE model's. A frame ignores the corner
 blocks, the joints' finite widths and the stage's own compliance: it is a fast first guess
-(:func:`prefit`) and a sensitivity study (:func:`log_sensitivity`), not a replacement for FE.
+(:func:`prefit`) and the Jacobian of the FE identification (:mod:`mechlib.hexflex.identify`),
+not a replacement for FE.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,21 +23,16 @@ import scipy.linalg as sl
 from scipy.optimize import least_squares
 
 from mechlib.hexflex import geometry as geo
-from mechlib.params import check_choice, check_float, check_int, check_matrix
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
+from mechlib.hexflex.identify import check_free, check_target, target_values
+from mechlib.params import check_float, check_int
 
-#: Al 7075-T6 defaults [MPa], [-]: the same values as ``model.AL7075_YOUNG_MPA`` / ``_POISSON``
-#: (not imported, to keep this module free of the FE stack; a test checks they agree).
-AL7075_YOUNG_MPA = 71_700.0
-AL7075_POISSON = 0.33
 #: Timoshenko shear correction factor of a rectangle (Cowper's ν-free value, 5/6).
 SHEAR_FACTOR = 5.0 / 6.0
 #: Roark's torsion constant of a rectangle: J = a b³ [1/3 − 0.21 (b/a)(1 − b⁴/(12 a⁴))].
 ROARK_THIRD, ROARK_C1, ROARK_C2 = 1.0 / 3.0, 0.21, 1.0 / 12.0
 #: Unit conversions of the output: mm → µm, rad → µrad, and mm⁻¹ → m⁻¹.
 UM_PER_MM, URAD_PER_RAD, MM_PER_M = 1e3, 1e6, 1e3
-#: Names of the four magnitudes fitted by :func:`prefit` and their (row, column, sign) in C.
-MAGNITUDES: tuple[str, ...] = ("x<-T1D1", "z<-T1D2", "thx<-T1D2", "|thz<-T1D1|")
-_MAG_INDEX = ((0, 0, 1.0), (2, 1, 1.0), (3, 1, 1.0), (5, 0, -1.0))
 #: Residual [log units] of a geometry the constructor rejects (e¹⁰ ≈ 2·10⁴ times off).
 INFEASIBLE_RESIDUAL = 10.0
 #: Largest number of elements per beam segment and largest relative finite-difference step.
@@ -284,12 +280,6 @@ def hexflex_frame_compliance(
     return scale * (stage_compliance(g, young, poisson, shear, n_elements) @ actuator_wrenches(g))
 
 
-def magnitudes(compliance: np.ndarray) -> np.ndarray:
-    """The four fitted magnitudes ``C[0,0], C[2,1], C[3,1], −C[5,0]`` (see :data:`MAGNITUDES`)."""
-    c = check_matrix("compliance", compliance, shape=(6, 6))
-    return np.array([sign * c[i, j] for i, j, sign in _MAG_INDEX])
-
-
 def tilt_to_lift_bound(g: geo.HexFlexGeometry) -> float:
     """Upper bound [rad/m] of θx←T1D2 / z←T1D2: the rigid body on six vertical point springs.
 
@@ -302,13 +292,6 @@ def tilt_to_lift_bound(g: geo.HexFlexGeometry) -> float:
     Beams also resist the tilt by their rotational stiffness, which lowers the ratio.
     """
     return 2 * g.tab_outer / (g.beam_radius**2 + g.tab_half_width**2) * MM_PER_M
-
-
-def _check_names(names: Sequence[str], what: str) -> tuple[str, ...]:
-    names = tuple(names)
-    if not names or len(set(names)) != len(names):
-        raise ValueError(f"{what} must list distinct dimension names, got {list(names)}")
-    return tuple(check_choice(what, n, geo.DIMENSION_BOUNDS) for n in names)
 
 
 def prefit(
@@ -349,10 +332,8 @@ def prefit(
     ValueError
         Bad target, names, bounds or material constants.
     """
-    tgt = np.asarray(target, dtype=float)
-    if tgt.shape != (4,) or not np.all(np.isfinite(tgt)) or np.any(tgt <= 0):
-        raise ValueError(f"target must be 4 finite values > 0 {MAGNITUDES}, got {target}")
-    free = _check_names(free, "free")
+    tgt = check_target(target)
+    free = check_free(free)
     young, poisson = _check_material(young, poisson)
     bounds = geo.DIMENSION_BOUNDS if bounds is None else bounds
     lo, hi = np.array([bounds.get(n, (np.nan, np.nan)) for n in free], dtype=float).T
@@ -370,30 +351,11 @@ def prefit(
             g = geometry_at(x)
         except ValueError:
             return np.full(4, INFEASIBLE_RESIDUAL)
-        return np.log(np.abs(magnitudes(hexflex_frame_compliance(g, young, poisson, shear)) / tgt))
+        return np.log(
+            np.abs(target_values(hexflex_frame_compliance(g, young, poisson, shear)) / tgt)
+        )
 
     # dogbox: 20-30 evaluations; trf crawled on this rank-deficient fit (measured: > 1000)
     sol = least_squares(residual, x0, bounds=(np.log(lo), np.log(hi)), method="dogbox")
     g = geometry_at(sol.x)
-    return g, magnitudes(hexflex_frame_compliance(g, young, poisson, shear))
-
-
-def log_sensitivity(
-    compliance_fn: Callable[[geo.HexFlexGeometry], np.ndarray],
-    g: geo.HexFlexGeometry,
-    names: Sequence[str],
-    rel_step: float = 1e-3,
-) -> np.ndarray:
-    """(4, k) central differences ``d log|magnitude_i| / d log(dimension_j)`` at ``g``.
-
-    ``compliance_fn(geometry)`` returns a (6, 6) compliance (this frame model, an FE model...);
-    dimension j is scaled by ``exp(±rel_step)``. The singular values of the result tell how many
-    combinations of ``names`` the four magnitudes of Eq 8 determine.
-    """
-    names = _check_names(names, "names")
-    h = check_float("rel_step", rel_step, low=0.0, high=MAX_REL_STEP, low_open=True)
-    out = np.empty((len(MAGNITUDES), len(names)))
-    for j, name in enumerate(names):
-        up, down = (g.replace(**{name: getattr(g, name) * np.exp(s)}) for s in (h, -h))
-        out[:, j] = np.log(np.abs(magnitudes(compliance_fn(up)) / magnitudes(compliance_fn(down))))
-    return out / (2 * h)
+    return g, target_values(hexflex_frame_compliance(g, young, poisson, shear))

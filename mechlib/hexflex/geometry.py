@@ -40,6 +40,9 @@ from mechlib.params import check_float
 TAB_ANGLES_DEG: tuple[float, float, float] = (90.0, 330.0, 210.0)
 #: Sign of each tab's positive D1 relative to the counter-clockwise tangent (Eq 8, θz row).
 TAB_D1_SIGNS: tuple[int, int, int] = (-1, 1, -1)
+#: The part's material, Al 7075-T6 (thesis sec. 2.6.1): Young's modulus [MPa], Poisson's ratio.
+AL7075_YOUNG_MPA = 71_700.0
+AL7075_POISSON = 0.33
 #: Part labels returned by :func:`classify`.
 PARTS: tuple[str, ...] = ("stage", "tab", "beam", "corner", "radial")
 #: Smallest slot between two separate parts of the plate [mm] (a wire-EDM or water-jet kerf).

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
-from mechlib.params import check_choice, check_float, check_int
+from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 #: (row, column, sign) of the four independent magnitudes in the 6 × 6 compliance:
 #: x←T1D1, z←T1D2, θx←T1D2, θz←T1D1 (sign: θz←T1D1 is negative in Eq 8).
@@ -39,7 +39,7 @@ ComplianceFn = Callable[[HexFlexGeometry], np.ndarray]
 
 def target_values(compliance: np.ndarray) -> np.ndarray:
     """The four magnitudes of :data:`TARGET_ENTRIES` from a 6 × 6 compliance."""
-    c = np.asarray(compliance, dtype=float)
+    c = check_matrix("compliance", np.asarray(compliance, dtype=float), shape=(6, 6))
     return np.array([s * c[i, j] for i, j, s in TARGET_ENTRIES])
 
 
@@ -138,7 +138,7 @@ def identify(
     history: list[np.ndarray] = []
     for _ in range(max_evaluations):
         achieved = target_values(compliance_fn(g))
-        history.append(np.r_[np.exp(x), achieved])
+        history.append(np.r_[[getattr(g, n) for n in free], achieved])
         r = np.log(achieved / target)
         if np.abs(r).max() <= tol or len(history) == max_evaluations:
             break
@@ -157,7 +157,7 @@ def identify(
     hist = np.asarray(history)
     cost = np.max(np.abs(np.log(hist[:, len(free) :] / target)), axis=1)
     best_row = hist[int(np.argmin(cost))]
-    best = start.replace(**dict(zip(free, best_row[: len(free)], strict=True)))
+    best = start.replace(**{n: float(v) for n, v in zip(free, best_row[: len(free)], strict=True)})
     return Identification(best, best_row[len(free) :], target, len(history), hist)
 
 

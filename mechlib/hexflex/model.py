@@ -15,16 +15,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse.linalg as sla
+from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import mesh as ms
 from mechlib.hexflex import problem as fe
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
 from mechlib.params import check_choice, check_float, check_matrix
 
 ELEMENTS = fe.ELEMENTS
-#: Al 7075-T6: Young's modulus [MPa] and Poisson's ratio (issue specification).
-AL7075_YOUNG_MPA = 71_700.0
-AL7075_POISSON = 0.33
 #: Largest Poisson's ratio accepted (0.5 is incompressible: the stiffness becomes singular).
 MAX_POISSON = 0.499
 #: Largest |actuator force| the model accepts [N] (Table 1 uses ±1 N; sweeps go further).
@@ -33,7 +32,7 @@ MAX_FORCE_N = 50.0
 #: structured Q2 elements across it; convergence study in the hexflex notebook).
 DEFAULT_MESH_FRACTION = 0.5
 #: Default largest element in the stage and tabs, in narrowest flexure widths.
-COARSE_WIDTHS = 4.0
+COARSE_WIDTHS = 3.0
 
 
 @dataclass
@@ -56,6 +55,9 @@ class HexFlexModel:
         default: the multiple that makes it ``COARSE_WIDTHS`` narrowest flexure widths, whatever
         ``mesh_size`` (so refining ``mesh_size`` refines the flexures, where the compliance is).
     element : {"q2", "shell"}
+    body_factor : float
+        Stiffness multiplier of the stage and tabs, in [1, 1e6] (1: the real part; large: a
+        nearly rigid body, the reduced beam model's assumption).
     """
 
     geometry: geo.HexFlexGeometry = field(default_factory=geo.HexFlexGeometry)
@@ -64,6 +66,7 @@ class HexFlexModel:
     mesh_size: float | None = None
     coarsening: float | None = None
     element: str = "q2"
+    body_factor: float = 1.0
     timings: dict[str, float] = field(default_factory=dict, init=False)
 
     def __post_init__(self) -> None:
@@ -73,6 +76,7 @@ class HexFlexModel:
             "poisson", self.poisson, low=-1.0, high=MAX_POISSON, low_open=True
         )
         self.element = check_choice("element", self.element, ELEMENTS)
+        self.body_factor = check_float("body_factor", self.body_factor, low=1.0, high=1e6)
         size = DEFAULT_MESH_FRACTION * g.narrowest if self.mesh_size is None else self.mesh_size
         self.mesh_size = check_float(
             "mesh_size [mm]", size, low=0.0, high=g.narrowest, low_open=True
@@ -84,7 +88,7 @@ class HexFlexModel:
         sector = ms.sector_mesh(g, self.mesh_size, self.coarsening)
         self.planar = ms.full_mesh(sector, self.mesh_size)
         t1 = time.perf_counter()
-        self.fe = fe.build(g, self.planar, self.element, self.young, self.poisson)
+        self.fe = fe.build(g, self.planar, self.element, self.young, self.poisson, self.body_factor)
         t2 = time.perf_counter()
         self._matrix = self._assemble()
         t3 = time.perf_counter()
@@ -132,15 +136,22 @@ class HexFlexModel:
     def solve_reduced(self, forces: object) -> np.ndarray:
         """Reduced displacement vectors (n_dofs, n) for actuator forces (n, 6) [N]."""
         f = self.check_forces(forces)
-        return self._lu.solve(np.ascontiguousarray(self.fe.loads @ f.T))
+        return self.back_substitute(self.fe.loads @ f.T)
 
     def back_substitute(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve ``K x = rhs`` with the stored factorisation (rhs (n_dofs,) or (n_dofs, n))."""
-        return self._lu.solve(np.ascontiguousarray(rhs))
+        """Solve ``K x = rhs`` with the stored factorisation (rhs (n_dofs,) or (n_dofs, n)).
+
+        BLAS runs on one thread here: SuperLU's multi-right-hand-side solve goes through BLAS,
+        whose multi-threaded kernels change the last bits with the thread count, and a worker
+        process (one thread) must return the same numbers as the main process.
+        """
+        with threadpool_limits(limits=1, user_api="blas"):
+            return self._lu.solve(np.ascontiguousarray(rhs))
 
     def pose_of(self, reduced: np.ndarray) -> np.ndarray:
         """Stage pose(s) [µm, µrad] of reduced displacement vector(s): (6,) or (6, n)."""
-        return self.fe.fit @ reduced[self.fe.stage_idx]
+        with threadpool_limits(limits=1, user_api="blas"):  # see back_substitute
+            return self.fe.fit @ reduced[self.fe.stage_idx]
 
     def poses(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""

@@ -30,13 +30,21 @@ ELEMENTS: tuple[str, ...] = ("q2", "shell")
 SHELL_DRILL = 1e-7
 #: Quadrature order of the Q2 solid terms.
 QUAD_ORDER = 4
+#: Parts of the moving body (stiffened by ``body_factor``); the others are the beams.
+BODY_PARTS: tuple[str, ...] = ("stage", "tab")
 #: Relative tolerance of the region selections (coordinates on a cut line or an edge).
 _REGION_TOL = 1e-6
 
 
 def quiet_sfepy() -> None:
-    """Silence SfePy's console output."""
-    from sfepy.base.base import output
+    """Silence SfePy's console output, including the notice its term modules print on import
+    when the optional jax package is absent (jax-based terms are not used here)."""
+    import contextlib
+    import io
+
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+        import sfepy.terms  # noqa: F401  (imported once, here, for its side effect only)
+        from sfepy.base.base import output
 
     output.set_output(quiet=True)
 
@@ -74,16 +82,25 @@ class FEProblem:
 
 
 def build(
-    g: geo.HexFlexGeometry, planar: ms.PlanarMesh, element: str, young: float, poisson: float
+    g: geo.HexFlexGeometry,
+    planar: ms.PlanarMesh,
+    element: str,
+    young: float,
+    poisson: float,
+    body_factor: float = 1.0,
 ) -> FEProblem:
-    """The linear-elastic SfePy problem of ``g`` on ``planar`` with the ground clamped."""
-    from sfepy.discrete import Equation, Equations, FieldVariable, Function, Material, Problem
+    """The linear-elastic SfePy problem of ``g`` on ``planar`` with the ground clamped.
+
+    ``body_factor`` multiplies the stiffness of the stage and tabs (not the beams): 1 is the real
+    part; a large value makes the body nearly rigid, as the reduced beam model assumes.
+    """
+    quiet_sfepy()  # before the first SfePy import prints its notices
+    from sfepy.discrete import Equation, Equations, FieldVariable, Function, Problem
     from sfepy.discrete.conditions import Conditions, EssentialBC
     from sfepy.discrete.fem import FEDomain, Field, Mesh
     from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
     from sfepy.terms import Term
 
-    quiet_sfepy()
     parts = _cell_parts(g, planar)
     if element == "q2":
         coors, cells = ms.extrude(planar, g.thickness)
@@ -113,26 +130,37 @@ def build(
     ]
     if element == "q2":
         fld = Field.from_args("fu", np.float64, "vector", omega, approx_order=2)
-        mat = Material("m", D=stiffness_from_youngpoisson(3, young, poisson))
+        elastic = stiffness_from_youngpoisson(3, young, poisson)
     else:
         import sfepy.mechanics.shell10x as sh
 
         fld = Field.from_args(
             "fu", np.float64, 6, omega, approx_order=1, poly_space_basis="shell10x"
         )
-        mat = Material(
-            "m",
-            D=sh.create_elastic_tensor(young=young, poisson=poisson),
-            values={".drill": SHELL_DRILL},
-        )
+        elastic = sh.create_elastic_tensor(young=young, poisson=poisson)
     u = FieldVariable("u", "unknown", fld)
     v = FieldVariable("v", "test", fld, primary_var_name="u")
-    if element == "q2":
-        term = Term.new("dw_lin_elastic(m.D, v, u)", integral(), omega, m=mat, v=v, u=u)
-    else:
-        term = Term.new(
-            "dw_shell10x(m.D, m.drill, v, u)", _shell_integral(g), omega, m=mat, v=v, u=u
+    mat = _material("m", elastic, element)
+    if body_factor == 1.0:
+        pieces = [(omega, mat)]
+    else:  # the stage and tabs scaled, the beams as they are
+        body = " +c ".join(f"cells of group {1 + geo.PARTS.index(p)}" for p in BODY_PARTS)
+        flex = " +c ".join(
+            f"cells of group {1 + i}" for i, p in enumerate(geo.PARTS) if p not in BODY_PARTS
         )
+        pieces = [
+            (domain.create_region("Body", body), _material("mb", body_factor * elastic, element)),
+            (domain.create_region("Flex", flex), mat),
+        ]
+    term = None
+    for region, m in pieces:
+        if element == "q2":
+            t = Term.new(f"dw_lin_elastic({m.name}.D, v, u)", integral(), region, v=v, u=u,
+                         **{m.name: m})  # fmt: skip
+        else:
+            t = Term.new(f"dw_shell10x({m.name}.D, {m.name}.drill, v, u)", _shell_integral(g),
+                         region, v=v, u=u, **{m.name: m})  # fmt: skip
+        term = t if term is None else term + t
     pb = Problem("hexflex", equations=Equations([Equation("balance", term)]))
     pb.set_bcs(ebcs=Conditions([EssentialBC("clamp", gamma, {"u.all": 0.0})]))
     pb.time_update()
@@ -149,6 +177,15 @@ def build(
     )  # fmt: skip
     prob.loads = unit_loads(prob, g)
     return prob
+
+
+def _material(name: str, elastic: np.ndarray, element: str):
+    """SfePy material with the elasticity tensor (and the shell's drilling factor)."""
+    from sfepy.discrete import Material
+
+    if element == "q2":
+        return Material(name, D=elastic)
+    return Material(name, D=elastic, values={".drill": SHELL_DRILL})
 
 
 def _cell_parts(g: geo.HexFlexGeometry, planar: ms.PlanarMesh) -> np.ndarray:
