@@ -12,9 +12,11 @@ images failed to load. A page fails when
 * it shows fewer glued values (``pasted-*`` elements) than its source has ``{glue…}`` roles:
   myst-nb drops a glue reference it cannot resolve and leaves no trace in the HTML.
 
-Network requests go to a dead proxy (``--proxy-server=127.0.0.1:9``), so a page that needed
-the network would fail here as it would on a machine without one. Exit status: 0 when every page
-passes, 1 when one fails, 3 when no Chromium is installed.
+The network is off: Chromium runs in a network namespace of its own (``unshare -n``) where the
+machine allows it (root, as in CI), and in any case sends every request to a dead proxy
+(``--proxy-server=127.0.0.1:9``), so a page that needed the network fails here as it would on a
+machine without one. Exit status: 0 when every page passes, 1 when one fails, 3 when no
+Chromium is installed.
 """
 
 from __future__ import annotations
@@ -158,9 +160,19 @@ def find_browser() -> str | None:
     return next((p for p in map(shutil.which, BROWSERS) if p), None)
 
 
+def offline_prefix() -> list[str]:
+    """``["unshare", "-n"]`` where a process may get a network namespace without any network."""
+    unshare = shutil.which("unshare")
+    if unshare is None:
+        return []
+    done = subprocess.run([unshare, "-n", "true"], capture_output=True, check=False)
+    return [unshare, "-n"] if done.returncode == 0 else []
+
+
 def dump_dom(browser: str, page: Path, profile: Path, screenshot: Path | None = None) -> str:
     """The DOM of ``page`` after its scripts ran (and a 1400 px wide screenshot if asked)."""
     cmd = [
+        *offline_prefix(),
         browser,
         *FLAGS,
         f"--user-data-dir={profile}",
