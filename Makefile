@@ -17,17 +17,21 @@ BUILD       := build$(if $(filter-out ci,$(PROFILE)),/$(PROFILE))
 PROFILE_DIR := notebooks/profiles/$(PROFILE)
 NBS         := $(sort $(wildcard notebooks/*.ipynb))
 NB_NAMES    := $(notdir $(basename $(NBS)))
-MECHLIB_SRC := $(shell find mechlib -name '*.py' 2>/dev/null)
+# what the notebooks import: the book tooling (mechlib/book/, mechlib/bookbuild.py) is not, so a
+# change there rebuilds the book without re-executing the notebooks
+MECHLIB_SRC := $(filter-out mechlib/bookbuild.py mechlib/book/%,$(shell find mechlib -name '*.py' 2>/dev/null))
 EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
 export PYTHONHASHSEED := 0
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 
-.PHONY: help env book test unit notebooks check-records run references lint bench lock clean
+.PHONY: help env book test unit notebooks check-records check-book check-browser run references lint \
+        bench lock clean
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
 	@echo "                 PROFILE=full: the full-size runs of notebooks/profiles/full/ (hours)"
-	@echo "make test        unit tests + every notebook + reference comparison + book build"
+	@echo "make test        unit tests + every notebook + reference comparison + book build and checks"
+	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run)"
@@ -36,15 +40,18 @@ help:
 # --- environment ------------------------------------------------------------------------------
 env: $(STAMP)
 
-$(STAMP): environment.lock .ci/bootstrap.lock pyproject.toml
+$(UV): .ci/bootstrap.lock
 	test -x $(PY) || $(PYTHON_BOOT) -m venv $(VENV)
 	$(PY) -m pip install -q --disable-pip-version-check --require-hashes -r .ci/bootstrap.lock
+	touch $@
+
+$(STAMP): environment.lock $(UV) pyproject.toml
 	$(UV) pip sync -q --python $(PY) environment.lock
 	$(UV) pip install -q --python $(PY) --no-deps --no-build-isolation -e .
 	touch $@
 
-lock:
-	uv pip compile requirements.in --generate-hashes --python-version 3.11.7 -o environment.lock
+lock: $(UV)
+	$(UV) pip compile requirements.in --generate-hashes --python-version 3.11.7 -o environment.lock
 
 # --- notebooks --------------------------------------------------------------------------------
 # An executed notebook depends on its source, on mechlib and on the environment: nothing else
@@ -62,17 +69,29 @@ $(BUILD)/executed/virtual_experiments.ipynb: $(BUILD)/executed/hexflex_model.ipy
 
 notebooks: $(EXECUTED)
 
+# The HTML is rebuilt from scratch (seconds): an incremental Sphinx build re-reports no warning of
+# an unchanged page and skips copying book/_static when no page changed.
 book: $(EXECUTED)
 	$(PY) -m mechlib.bookbuild --executed $(BUILD)/executed --records $(BUILD)/records --book book
+	rm -rf book/_build
 	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet
 	@echo "Book: $(abspath book/_build/html/index.html)"
 
 # --- tests ------------------------------------------------------------------------------------
 unit: $(STAMP)
-	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py
+	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py --ignore=tests/test_book_html.py
 
 check-records: $(EXECUTED)
 	$(VENV)/bin/pytest -q tests/test_records.py
+
+# the built HTML: no network requests, no machine paths or warnings, links resolve (after `make book`)
+check-book: $(STAMP)
+	MECHLIB_REQUIRE_BOOK=1 $(VENV)/bin/pytest -q tests/test_book_html.py
+
+# every built page in headless Chromium from file:// with the network off: math typeset, images
+# loaded, glued numbers present (after `make book`)
+check-browser: $(STAMP)
+	$(PY) -m mechlib.book.browser --html book/_build/html --book book
 
 test: $(STAMP)
 	@test "$(PROFILE)" = ci || { echo "make test runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
@@ -80,6 +99,10 @@ test: $(STAMP)
 	$(MAKE) --no-print-directory unit
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory book
+	$(MAKE) --no-print-directory check-book
+	@if $(PY) -c 'import sys; from mechlib.book.browser import find_browser; sys.exit(not find_browser())'; \
+	then $(MAKE) --no-print-directory check-browser; \
+	else echo "check-browser skipped: no Chromium on this machine (apt-get install chromium)"; fi
 	$(PY) -m mechlib.records determinism --records $(BUILD)/records
 
 # --- one notebook with new parameters ---------------------------------------------------------
@@ -100,4 +123,4 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff format --check mechlib tests
 
 clean:
-	rm -rf $(BUILD) book/_build
+	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md

@@ -1,72 +1,208 @@
 """Assemble the book's generated pages from the executed notebooks and their records.
 
-``python -m mechlib.bookbuild --executed build/executed --book book`` copies every executed
-notebook into ``book/chapters/`` (a build product) and writes ``book/report.md``, the
-reproduction report, from the ``report`` rows of every record in ``build/records``.
+``python -m mechlib.bookbuild --executed build/executed --records build/records --book book``
+
+* copies every executed notebook into ``book/chapters/`` with the presentation rules of
+  :mod:`mechlib.book.cells` applied (computation folded, bookkeeping removed, machine paths and
+  library warnings neutralised, headings labelled);
+* writes ``book/report.md``, the reproduction report (:mod:`mechlib.book.reportpage`), and
+  ``book/generated/summary.md``, its verdict counts in one paragraph (included by ``intro.md``);
+* draws the thesis's Figs 1 and 9 on their pages in ``book/generated/``
+  (:mod:`mechlib.book.methods`);
+* checks that every ``file:`` entry of ``book/_toc.yml`` names an existing page, naming the
+  entry that does not.
+
+All of these are build products (git-ignored): nothing on them is typed by hand.
 """
 
 from __future__ import annotations
 
 import argparse
-import shutil
+import json
+import re
+import sys
 from pathlib import Path
+from typing import Any
 
+import yaml
+
+from mechlib.book import artefacts, methods, reportpage
+from mechlib.book.cells import prepare_notebook
 from mechlib.records import REPO_ROOT, load, records_dir
 
-REPORT_HEADER = """# Reproduction report
+REPORT_HEADER = """---
+html_theme.sidebar_secondary.remove: true
+---
+
+# Reproduction report
 
 One row per thesis artefact and compared quantity, generated from the records that the chapters'
 notebooks wrote in this build (nothing on this page is typed by hand). *Reproduced* means the
 difference is within half a unit of the last digit the thesis printed; *within tolerance* names
 the relative tolerance allowed beyond that; *diverges* gives the cause found in the chapter.
-Differences are absolute (in the units of the published value) and relative.
+Differences are the largest absolute one (in the units of the published value) and, in brackets,
+the largest relative one. Each artefact links to the section of the chapter page that shows it.
 
 """
-COLUMNS = ("artefact", "quantity", "published", "ours", "max_abs_diff", "max_rel_diff", "verdict")
+PAGE_SUFFIXES = (".md", ".ipynb", ".rst")
+_CHAPTER_CAPTION = re.compile(r"^Chapter\s+(\d+)\b")
 
 
-def _cell(value: object) -> str:
-    if value is None:
-        return "—"
-    if isinstance(value, float):
-        return f"{value:.3g}"
-    return str(value).replace("|", "\\|").replace("\n", " ")
+def toc_entries(toc: dict[str, Any]) -> list[str]:
+    """Every ``root`` and ``file`` entry of a jupyter-book ``_toc.yml``, in reading order."""
+    found = [toc["root"]] if "root" in toc else []
+
+    def walk(node: Any) -> None:
+        if isinstance(node, dict):
+            if "file" in node:
+                found.append(node["file"])
+            for key in ("parts", "chapters", "sections"):
+                for child in node.get(key, []) or []:
+                    walk(child)
+        elif isinstance(node, list):
+            for child in node:
+                walk(child)
+
+    walk(toc)
+    return found
 
 
-def report_markdown(records: Path) -> str:
-    """Markdown of the reproduction report built from every record file in ``records``."""
-    lines = [REPORT_HEADER]
+def missing_toc_pages(book: Path) -> list[str]:
+    """Messages for ``_toc.yml`` entries that name no page (empty when all exist)."""
+    toc_path = Path(book) / "_toc.yml"
+    toc = yaml.safe_load(toc_path.read_text())
+    problems = []
+    for entry in toc_entries(toc):
+        path = Path(book) / entry
+        if path.suffix in PAGE_SUFFIXES and path.exists():
+            continue
+        if not any(path.with_name(path.name + s).exists() for s in PAGE_SUFFIXES):
+            tried = ", ".join(f"{entry}{s}" for s in PAGE_SUFFIXES)
+            problems.append(f"{toc_path}: entry {entry!r} names no page (looked for {tried})")
+    return problems
+
+
+def toc_chapters(toc: dict[str, Any]) -> list[reportpage.Chapter]:
+    """The thesis chapters of the book: parts captioned "Chapter N …", with their notebook pages."""
+    chapters = []
+    for part in toc.get("parts", []):
+        match = _CHAPTER_CAPTION.match(part.get("caption", ""))
+        if not match:
+            continue
+        pages = tuple(
+            Path(f).name
+            for f in toc_entries({"chapters": part.get("chapters", [])})
+            if f.startswith("chapters/")
+        )
+        chapters.append(reportpage.Chapter(int(match.group(1)), part["caption"], pages))
+    return chapters
+
+
+class Linker:
+    """MyST links to the section of a chapter page that shows an artefact (else to the page)."""
+
+    def __init__(self, sections: dict[str, list[artefacts.Section]]):
+        self.sections = sections
+
+    def __call__(self, page: str, what: str, text: str | None = None) -> str:
+        section = artefacts.find_section(self.sections.get(page, []), what)
+        if section is not None:
+            return f"{{ref}}`{text} <{section.label}>`" if text else f"{{ref}}`{section.label}`"
+        return f"{{doc}}`{text} </chapters/{page}>`" if text else f"{{doc}}`/chapters/{page}`"
+
+
+def _write(path: Path, text: str) -> None:
+    """Write only when the content changed (keeps Sphinx's incremental build incremental)."""
+    if not path.exists() or path.read_text() != text:
+        path.write_text(text)
+
+
+def copy_chapters(executed: Path, chapters: Path) -> dict[str, list[artefacts.Section]]:
+    """Prepare every executed notebook into ``chapters``; return each page's sections."""
+    chapters.mkdir(parents=True, exist_ok=True)
+    sections = {}
+    for nb_path in sorted(Path(executed).glob("*.ipynb")):
+        nb, sections[nb_path.stem] = prepare_notebook(
+            json.loads(nb_path.read_text()), nb_path.stem, REPO_ROOT
+        )
+        _write(chapters / nb_path.name, json.dumps(nb, indent=1, ensure_ascii=False) + "\n")
+    return sections
+
+
+def report_rows(
+    records: Path, chapters: list[reportpage.Chapter]
+) -> dict[int, list[reportpage.Row]]:
+    """The report rows of every record whose notebook is a page of a thesis chapter."""
+    chapter_of = {page: c.number for c in chapters for page in c.pages}
+    rows: dict[int, list[reportpage.Row]] = {c.number: [] for c in chapters}
     for path in sorted(Path(records).glob("*.json")):
         rec = load(path)
-        if not rec.get("report"):
+        if rec["notebook"] not in chapter_of:
+            print(f"bookbuild: record {path.name} belongs to no chapter of _toc.yml; not reported")
             continue
-        lines.append(f"## From `{rec['notebook']}`\n")
-        lines.append("| " + " | ".join(COLUMNS) + " |")
-        lines.append("|" + "---|" * len(COLUMNS))
-        for row in rec["report"]:
-            lines.append("| " + " | ".join(_cell(row.get(c)) for c in COLUMNS) + " |")
-        lines.append("")
+        rows[chapter_of[rec["notebook"]]] += [
+            reportpage.Row(rec["notebook"], r) for r in rec.get("report", [])
+        ]
+    return rows
+
+
+def report_markdown(
+    rows: dict[int, list[reportpage.Row]], chapters: list[reportpage.Chapter], link: Linker
+) -> str:
+    """The report page: summary of verdicts, then one table per chapter in the thesis's order."""
+    every = [r for c in chapters for r in rows[c.number]]
+    lines = [
+        REPORT_HEADER,
+        "## Summary",
+        "",
+        reportpage.summary_sentence(reportpage.count_verdicts(every)),
+        "",
+        reportpage.summary_table(rows, chapters),
+        "",
+    ]
+    for chapter in chapters:
+        lines += [f"## {chapter.caption}", ""]
+        if not rows[chapter.number]:
+            lines += ["No rows were recorded for this chapter.", ""]
+            continue
+        lines += [
+            reportpage.chapter_table(
+                rows[chapter.number], chapter, lambda page, what: link(page, what, what)
+            ),
+            "",
+        ]
     return "\n".join(lines)
 
 
+def build(executed: Path, records: Path, book: Path) -> list[str]:
+    """Write every generated page of ``book``; return the problems found in ``_toc.yml``."""
+    toc = yaml.safe_load((Path(book) / "_toc.yml").read_text())
+    chapters = toc_chapters(toc)
+    link = Linker(copy_chapters(executed, Path(book) / "chapters"))
+    rows = report_rows(records, chapters)
+    _write(Path(book) / "report.md", report_markdown(rows, chapters, link))
+    generated = Path(book) / "generated"
+    generated.mkdir(parents=True, exist_ok=True)
+    every = [r for c in chapters for r in rows[c.number]]
+    _write(
+        generated / "summary.md",
+        reportpage.summary_sentence(reportpage.count_verdicts(every)) + "\n",
+    )
+    methods.write_pages(generated, link)
+    return missing_toc_pages(book)
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Copy executed notebooks into the book and write the report page."""
+    """Generate the book's pages; exit 2 when ``_toc.yml`` names a page that does not exist."""
     parser = argparse.ArgumentParser(prog="python -m mechlib.bookbuild")
     parser.add_argument("--executed", type=Path, default=REPO_ROOT / "build" / "executed")
     parser.add_argument("--records", type=Path, default=records_dir())
     parser.add_argument("--book", type=Path, default=REPO_ROOT / "book")
     args = parser.parse_args(argv)
-    chapters = args.book / "chapters"
-    chapters.mkdir(parents=True, exist_ok=True)
-    for nb in sorted(args.executed.glob("*.ipynb")):
-        target = chapters / nb.name
-        if not target.exists() or target.read_bytes() != nb.read_bytes():
-            shutil.copyfile(nb, target)
-    report = report_markdown(args.records)
-    target = args.book / "report.md"
-    if not target.exists() or target.read_text() != report:
-        target.write_text(report)
-    return 0
+    problems = build(args.executed, args.records, args.book)
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    return 2 if problems else 0
 
 
 if __name__ == "__main__":

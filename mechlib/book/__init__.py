@@ -1,0 +1,15 @@
+"""Book tooling: turns executed notebooks and records into the pages of the Jupyter Book.
+
+Nothing here is imported by the notebooks, so a change in this package rebuilds the book without
+re-executing them (the Makefile leaves it out of the notebooks' prerequisites).
+
+Modules
+-------
+artefacts   thesis artefacts ("Table 3", "Figs 6–7"): parsing, the thesis's order, section labels
+cells       per-cell rules: fold computation, remove bookkeeping, neutralise machine paths/warnings
+reportpage  the reproduction report page and its verdict summary
+diagrams    flow diagrams drawn with matplotlib (the thesis's Figs 1 and 9)
+methods     the generated pages that show Figs 1 and 9
+htmlcheck   static checks of the built HTML (no network requests, no machine paths, links resolve)
+browser     the built book opened in headless Chromium from ``file://`` with the network off
+"""

@@ -1,0 +1,260 @@
+"""Rules that turn an executed notebook into a readable chapter page.
+
+The notebooks stay plain (no presentation tags to maintain by hand); the book build applies, by
+rule, what each cell shows:
+
+* the ``parameters`` cell (and papermill's injected one) stays as it is: readers change it;
+* a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.report_row(...)``,
+  ``rec.save()``, ``glue(..., display=False)`` and prints of what those return — is removed
+  (``remove-cell``); its glued values still reach the text;
+* every other code cell is folded (``hide-input``): figures and tables stay visible;
+* outputs lose lines of known library warnings and have absolute machine paths neutralised;
+* every heading gets a MyST label, so the report and the method pages can link to sections.
+"""
+
+from __future__ import annotations
+
+import ast
+import copy
+import re
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from mechlib.book.artefacts import Section, parse
+
+#: Tags that show a reader-facing cell as written (papermill's parameter cells).
+KEEP_VISIBLE = frozenset({"parameters", "injected-parameters"})
+#: Tags that already decide what a cell shows: the rules leave such a cell alone.
+PRESENTATION_TAGS = frozenset(
+    {"hide-input", "hide-output", "hide-cell", "remove-input", "remove-output", "remove-cell"}
+)
+#: Lines of library chatter that are not part of any result (matched anywhere in a line).
+KNOWN_WARNINGS = (
+    re.compile(r"install jax and jaxlib"),  # sfepy.terms.terms_jax, printed when sfepy loads terms
+)
+#: An absolute POSIX path with at least two components, not part of a longer word or URL.
+ABSOLUTE_PATH = re.compile(r"(?<![\w.~/:-])/(?:[\w.+-]+/)+[\w.+-]*")
+RECORDER_METHODS = frozenset({"value", "report_row", "save"})
+_HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
+_FENCE = re.compile(r"^\s*(```|~~~)")
+
+
+def recorder_names(sources: Iterable[str]) -> set[str]:
+    """Names bound to ``Recorder(...)`` in any cell (``{"rec"}`` if none is found)."""
+    names: set[str] = set()
+    for source in sources:
+        try:
+            tree = ast.parse(source)
+        except SyntaxError:
+            continue
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Assign)
+                and isinstance(node.value, ast.Call)
+                and isinstance(node.value.func, ast.Name)
+                and node.value.func.id == "Recorder"
+            ):
+                names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
+    return names or {"rec"}
+
+
+def _bookkeeping_call(node: ast.AST, recorders: set[str]) -> bool:
+    if not isinstance(node, ast.Call):
+        return False
+    func = node.func
+    if isinstance(func, ast.Name) and func.id == "glue":
+        return any(k.arg == "display" and _is_false(k.value) for k in node.keywords)
+    return (
+        isinstance(func, ast.Attribute)
+        and isinstance(func.value, ast.Name)
+        and func.value.id in recorders
+        and func.attr in RECORDER_METHODS
+    )
+
+
+def _is_false(node: ast.AST) -> bool:
+    return isinstance(node, ast.Constant) and node.value is False
+
+
+def _loaded_names(node: ast.AST) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Load)}
+
+
+def _bookkeeping_block(body: list[ast.stmt], recorders: set[str], derived: set[str]) -> bool:
+    for stmt in body:
+        if isinstance(stmt, ast.Pass):
+            continue
+        if isinstance(stmt, ast.Expr) and _bookkeeping_call(stmt.value, recorders):
+            continue
+        if isinstance(stmt, ast.Assign) and _bookkeeping_call(stmt.value, recorders):
+            derived |= {n.id for t in stmt.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+            continue
+        if (
+            isinstance(stmt, ast.Expr)
+            and isinstance(stmt.value, ast.Call)
+            and isinstance(stmt.value.func, ast.Name)
+            and stmt.value.func.id == "print"
+            and _loaded_names(stmt.value) - {"print"} <= derived
+        ):
+            continue
+        if isinstance(stmt, (ast.For, ast.If)) and _bookkeeping_block(
+            stmt.body + stmt.orelse, recorders, derived
+        ):
+            continue
+        return False
+    return True
+
+
+def is_bookkeeping(source: str, recorders: set[str] | None = None) -> bool:
+    """Whether every statement of a code cell only records, glues or reports that it did.
+
+    Parameters
+    ----------
+    source : str
+        The cell's code.
+    recorders : set of str, optional
+        Names of the notebook's ``Recorder`` objects (default ``{"rec"}``).
+
+    Returns
+    -------
+    bool
+        True for e.g. ``path = rec.save()`` followed by ``print(f"written to {path}")``, or a
+        ``for`` loop of ``glue(key, value, display=False)``; False as soon as one statement
+        computes, displays or cannot be parsed.
+    """
+    try:
+        tree = ast.parse(source)
+    except SyntaxError:
+        return False
+    if not tree.body:
+        return False
+    return _bookkeeping_block(tree.body, recorders or {"rec"}, set())
+
+
+def _shows_something(outputs: list[dict[str, Any]]) -> bool:
+    """Whether outputs hold a displayed result (glue records with a MIME prefix are not shown)."""
+    for out in outputs:
+        if out.get("output_type") not in ("display_data", "execute_result"):
+            continue
+        if out.get("metadata", {}).get("scrapbook", {}).get("mime_prefix"):
+            continue
+        return True
+    return False
+
+
+def cell_tags(cell: dict[str, Any], recorders: set[str]) -> list[str]:
+    """Tags a code cell gets in the book (markdown cells keep theirs).
+
+    A notebook's own presentation tag is kept, except that a bookkeeping cell the notebook only
+    folded (``hide-input``) is removed like any other.
+    """
+    tags = list(cell.get("metadata", {}).get("tags", []))
+    if cell.get("cell_type") != "code" or KEEP_VISIBLE & set(tags):
+        return tags
+    decided = PRESENTATION_TAGS & set(tags)
+    if decided - {"hide-input"}:
+        return tags
+    source = "".join(cell.get("source", ""))
+    if is_bookkeeping(source, recorders) and not _shows_something(cell.get("outputs", [])):
+        return [t for t in tags if t != "hide-input"] + ["remove-cell"]
+    return tags if decided else [*tags, "hide-input"]
+
+
+def neutralise(text: str, repo_root: Path) -> str:
+    """Drop lines of known warnings; show paths inside the repository relative to it and any
+    other absolute path by its file name only."""
+    root = str(Path(repo_root).resolve()).rstrip("/") + "/"
+    lines = [
+        ln for ln in text.splitlines(keepends=True) if not any(w.search(ln) for w in KNOWN_WARNINGS)
+    ]
+    kept = "".join(lines).replace(root, "")
+    return ABSOLUTE_PATH.sub(lambda m: m.group(0).rsplit("/", 1)[-1] or "…", kept)
+
+
+def _clean_text(value: Any, repo_root: Path) -> Any:
+    if isinstance(value, list):
+        value = "".join(value)
+    return neutralise(value, repo_root) if isinstance(value, str) else value
+
+
+def clean_outputs(outputs: list[dict[str, Any]], repo_root: Path) -> list[dict[str, Any]]:
+    """Outputs without known warnings or machine paths; streams left empty are dropped."""
+    cleaned = []
+    for out in copy.deepcopy(outputs):
+        kind = out.get("output_type")
+        if kind == "stream":
+            out["text"] = _clean_text(out.get("text", ""), repo_root)
+            if not out["text"].strip():
+                continue
+        elif kind in ("display_data", "execute_result"):
+            data = out.get("data", {})
+            for mime in [m for m in data if m.startswith("text/") or m.endswith("text/plain")]:
+                data[mime] = _clean_text(data[mime], repo_root)
+        elif kind == "error":
+            out["traceback"] = [_clean_text(t, repo_root) for t in out.get("traceback", [])]
+        cleaned.append(out)
+    return cleaned
+
+
+def label_headings(source: str, prefix: str, start: int) -> tuple[str, list[Section]]:
+    """Insert a MyST label ``(<prefix>-s<k>)=`` before every heading of a markdown cell.
+
+    Parameters
+    ----------
+    source : str
+        Markdown text; headings inside fenced code are left alone.
+    prefix : str
+        Unique per page (the notebook's name).
+    start : int
+        Number of headings labelled so far on the page (labels count on across cells).
+
+    Returns
+    -------
+    str, list of Section
+        The labelled markdown and its sections.
+    """
+    out, sections, fenced = [], [], False
+    for line in source.splitlines():
+        if _FENCE.match(line):
+            fenced = not fenced
+        match = None if fenced else _HEADING.match(line)
+        if match:
+            label = f"{prefix}-s{start + len(sections) + 1}"
+            title = match.group(2)
+            sections.append(Section(label, title, tuple(parse(title))))
+            out.append(f"({label})=")
+        out.append(line)
+    return "\n".join(out), sections
+
+
+def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[dict, list[Section]]:
+    """A copy of an executed notebook ready for the book, and its labelled sections.
+
+    Parameters
+    ----------
+    nb : dict
+        The executed notebook (nbformat 4 JSON).
+    name : str
+        The page's name (notebook stem), used as the label prefix.
+    repo_root : Path
+        Paths below it are shown relative to it.
+    """
+    nb = copy.deepcopy(nb)
+    cells = nb.get("cells", [])
+    recorders = recorder_names(
+        "".join(c.get("source", "")) for c in cells if c.get("cell_type") == "code"
+    )
+    sections: list[Section] = []
+    prefix = re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
+    for cell in cells:
+        if cell.get("cell_type") == "markdown":
+            text, found = label_headings("".join(cell.get("source", "")), prefix, len(sections))
+            cell["source"] = text
+            sections += found
+            continue
+        if cell.get("cell_type") != "code":
+            continue
+        cell.setdefault("metadata", {})["tags"] = cell_tags(cell, recorders)
+        cell["outputs"] = clean_outputs(cell.get("outputs", []), repo_root)
+    return nb, sections

@@ -1,0 +1,299 @@
+"""Book tooling that assembles pages: artefact parsing, cell rules, the report page, toc checks."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import yaml
+
+from mechlib import bookbuild, report
+from mechlib.book import artefacts, cells, reportpage
+from mechlib.records import REPO_ROOT
+
+FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
+
+
+# --- artefacts -----------------------------------------------------------------------------------
+def test_parse_names_ranges_lists_and_kinds_in_order() -> None:
+    assert artefacts.parse("Tables 2–3, Figs 6 and 7") == [
+        ("table", 2),
+        ("table", 3),
+        ("fig", 6),
+        ("fig", 7),
+    ]
+    assert artefacts.parse("Eq 8 — which published data?") == [("eq", 8)]
+    assert artefacts.parse("Figures 2–5") == [("fig", 2), ("fig", 3), ("fig", 4), ("fig", 5)]
+    assert artefacts.parse("Tables 6, 8") == [("table", 6), ("table", 8)]
+    assert artefacts.parse("The units of the header") == []
+    with pytest.raises(ValueError, match="5–2"):
+        artefacts.parse("Tables 5–2")
+
+
+def test_sort_key_follows_the_thesis_order_per_chapter() -> None:
+    names = ["Eq 6", "Fig 2", "Table 5", "Table 1", "Fig 8", "Eq 9"]
+    ordered = sorted(names, key=lambda n: artefacts.sort_key(artefacts.parse(n), 2))
+    assert ordered == ["Table 1", "Table 5", "Fig 2", "Fig 8", "Eq 6", "Eq 9"]
+    ordered3 = sorted(
+        ["Table 6", "Fig 14", "Fig 10"], key=lambda n: artefacts.sort_key(artefacts.parse(n), 3)
+    )
+    assert ordered3 == ["Fig 10", "Fig 14", "Table 6"]
+
+
+def test_find_section_prefers_most_artefacts_then_words_then_none() -> None:
+    secs = [
+        artefacts.Section("a-s1", "Table 2 — design", (("table", 2),)),
+        artefacts.Section("a-s2", "Tables 2 and 3 — screening", (("table", 2), ("table", 3))),
+        artefacts.Section("a-s3", "Identification of the dimensions", ()),
+    ]
+    assert artefacts.find_section(secs, "Table 2").label == "a-s1"
+    assert artefacts.find_section(secs, "Tables 2–3").label == "a-s2"
+    assert artefacts.find_section(secs, "identification").label == "a-s3"
+    assert artefacts.find_section(secs, "Fig 9") is None
+
+
+# --- cell rules ----------------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    "source",
+    [
+        FINAL_CELL,
+        '_ = rec.value("k", 1.0, rtol=1e-3)',
+        'for key, val in {"a": x, "b": y}.items():\n    glue(key, float(val), display=False)',
+        'rec.report_row(report.computed_row("Fig 2", "dims", dims))\nrec.value("n", n)',
+    ],
+)
+def test_bookkeeping_cells_are_recognised(source: str) -> None:
+    assert cells.is_bookkeeping(source, {"rec"})
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        'me6 = screening.margins(s0)\nglue("me6", me6, display=False)',  # computes
+        'glue("fig", fig)',  # displays
+        'print(f"effects {effects}")',  # prints a result
+        "rec.value(",  # does not parse
+        "",
+    ],
+)
+def test_computation_is_not_bookkeeping(source: str) -> None:
+    assert not cells.is_bookkeeping(source, {"rec"})
+
+
+def _code(source: str, tags: list[str] | None = None, outputs: list | None = None) -> dict:
+    return {
+        "cell_type": "code",
+        "source": source,
+        "metadata": {"tags": tags or []},
+        "outputs": outputs or [],
+        "execution_count": 1,
+    }
+
+
+def test_cell_tags_fold_compute_remove_bookkeeping_keep_parameters() -> None:
+    rec = {"rec"}
+    assert cells.cell_tags(_code("seed = 1", ["parameters"]), rec) == ["parameters"]
+    assert cells.cell_tags(_code("import numpy", ["hide-input"]), rec) == ["hide-input"]
+    assert cells.cell_tags(_code("x = f(1)\nx"), rec) == ["hide-input"]
+    assert cells.cell_tags(_code(FINAL_CELL), rec) == ["remove-cell"]
+    assert cells.cell_tags(_code(FINAL_CELL, ["hide-input"]), rec) == ["remove-cell"]
+    assert cells.cell_tags(_code(FINAL_CELL, ["remove-output"]), rec) == ["remove-output"]
+    shown = [{"output_type": "display_data", "data": {"image/png": "..."}, "metadata": {}}]
+    assert cells.cell_tags(_code(FINAL_CELL, outputs=shown), rec) == ["hide-input"]
+
+
+def test_neutralise_paths_and_warnings_but_not_units(tmp_path: Path) -> None:
+    text = (
+        f"record written to {tmp_path}/build/records/a.json\n"
+        "install jax and jaxlib to use terms_jax.py!\n"
+        "cache in /tmp/xyz/cache/run.npy; slope 57 µm/N, 3 rad/m\n"
+    )
+    out = cells.neutralise(text, tmp_path)
+    assert (
+        out == "record written to build/records/a.json\ncache in run.npy; slope 57 µm/N, 3 rad/m\n"
+    )
+
+
+def test_clean_outputs_drops_emptied_streams_and_cleans_glue_text(tmp_path: Path) -> None:
+    outs = [
+        {
+            "output_type": "stream",
+            "name": "stdout",
+            "text": "install jax and jaxlib to use terms_jax.py!\n",
+        },
+        {
+            "output_type": "display_data",
+            "metadata": {"scrapbook": {"name": "p", "mime_prefix": "x/"}},
+            "data": {"application/papermill.record/text/plain": f"'{tmp_path}/a/b.json'"},
+        },
+    ]
+    cleaned = cells.clean_outputs(outs, tmp_path)
+    assert len(cleaned) == 1
+    assert cleaned[0]["data"]["application/papermill.record/text/plain"] == "'a/b.json'"
+
+
+def test_headings_get_labels_and_sections_outside_code_fences() -> None:
+    md = "# Title\ntext\n```\n# not a heading\n```\n## Table 3 — effects"
+    text, secs = cells.label_headings(md, "nb", 4)
+    assert [s.label for s in secs] == ["nb-s5", "nb-s6"]
+    assert secs[1].artefacts == (("table", 3),)
+    assert text.splitlines()[0] == "(nb-s5)=" and "(nb-s6)=\n## Table 3 — effects" in text
+    assert "# not a heading" in text and text.count(")=") == 2
+
+
+def test_prepare_notebook_applies_every_rule(tmp_path: Path) -> None:
+    nb = {
+        "cells": [
+            {"cell_type": "markdown", "source": "## Table 1 — levels", "metadata": {}},
+            _code("seed = 1", ["parameters"]),
+            _code('rec = Recorder("x")\nx = 2'),
+            _code(
+                FINAL_CELL,
+                outputs=[
+                    {
+                        "output_type": "stream",
+                        "name": "stdout",
+                        "text": f"record written to {tmp_path}/r.json\n",
+                    }
+                ],
+            ),
+        ],
+        "metadata": {},
+        "nbformat": 4,
+        "nbformat_minor": 5,
+    }
+    out, secs = cells.prepare_notebook(nb, "my_nb", tmp_path)
+    assert [c["metadata"].get("tags") for c in out["cells"]] == [
+        None,
+        ["parameters"],
+        ["hide-input"],
+        ["remove-cell"],
+    ]
+    assert out["cells"][3]["outputs"][0]["text"] == "record written to r.json\n"
+    assert secs[0].label == "my-nb-s1" and out["cells"][0]["source"].startswith("(my-nb-s1)=")
+    assert nb["cells"][2]["metadata"]["tags"] == []  # the input is not modified
+
+
+# --- report page ---------------------------------------------------------------------------------
+ROWS = [
+    report.compare_row("Eq 8", "S", [1.0], [1.0]),
+    report.compare_row("Table 5", "err", [1.0], [1.5], cause="non-linear"),
+    report.compare_row("Table 1", "levels", [1.0], [1.004], rtol=0.01),
+    report.claim_row("Fig 6", "dominant factors", "x: T1D1 (-1.0 N)", True),
+    report.claim_row("Table 3", "m = 6", "no", False),
+    report.computed_row("Fig 2", "dims", [0.493389]),
+]
+
+
+def test_verdicts_are_counted_per_group() -> None:
+    counts = reportpage.count_verdicts([reportpage.Row("p", r) for r in ROWS])
+    assert counts == {
+        "reproduced": 1,
+        "within": 1,
+        "diverges": 1,
+        "supported": 1,
+        "not_supported": 1,
+        "computed": 1,
+    }
+    sentence = reportpage.summary_sentence({**counts, "diverges": 4})
+    assert "has 9 rows" in sentence and "4 diverge" in sentence
+    with pytest.raises(ValueError, match="unknown verdict"):
+        reportpage.verdict_key("looks fine")
+
+
+def test_numbers_keep_integer_digits_and_four_significant() -> None:
+    assert reportpage.fmt_number(575314.0) == "575314"
+    assert reportpage.fmt_number(58.1628) == "58.16"
+    assert reportpage.fmt_number(9.70131e-13) == "9.701e-13"
+    assert (
+        reportpage.shorten_numbers("0.166667, -28.7638, … (36 values)")
+        == "0.1667, -28.76, … (36 values)"
+    )
+    assert reportpage.fmt_difference(0.0123456, 0.00234) == "0.012 (0.23 %)"
+    assert reportpage.fmt_difference(None, None) == "—"
+
+
+def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
+    rows = [reportpage.Row("nb", r) for r in ROWS]
+    chapter = reportpage.Chapter(2, "Chapter 2", ("nb",))
+    table = reportpage.chapter_table(rows, chapter, lambda page, what: f"LINK[{page}:{what}]")
+    order = [
+        line.split(":")[1].rstrip("]") for line in table.splitlines() if line.startswith("* - LINK")
+    ]
+    assert order == ["Table 1", "Table 3", "Table 5", "Fig 2", "Fig 6", "Eq 8"]
+    assert "x: T1D1 (-1.0 N)" in table  # claim evidence is shown as written
+    assert "{bdg-warning}`diverges`" in table and "non-linear" in table
+
+
+# --- toc and report assembly ---------------------------------------------------------------------
+def _book(tmp_path: Path, toc: dict) -> Path:
+    (tmp_path / "chapters").mkdir()
+    (tmp_path / "intro.md").write_text("# Intro\n")
+    (tmp_path / "chapters" / "a.ipynb").write_text("{}")
+    (tmp_path / "_toc.yml").write_text(yaml.safe_dump(toc))
+    return tmp_path
+
+
+def test_a_toc_entry_naming_no_page_is_reported_with_the_toc_file(tmp_path: Path) -> None:
+    toc = {
+        "format": "jb-book",
+        "root": "intro",
+        "parts": [
+            {
+                "caption": "Chapter 2 — x",
+                "chapters": [{"file": "chapters/a"}, {"file": "chapters/typo"}],
+            }
+        ],
+    }
+    book = _book(tmp_path, toc)
+    problems = bookbuild.missing_toc_pages(book)
+    assert len(problems) == 1 and "_toc.yml" in problems[0] and "'chapters/typo'" in problems[0]
+    toc["parts"][0]["chapters"].pop()
+    (book / "_toc.yml").write_text(yaml.safe_dump(toc))
+    assert bookbuild.missing_toc_pages(book) == []
+
+
+def test_build_exits_2_naming_a_broken_toc_entry(
+    tmp_path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    toc = {
+        "format": "jb-book",
+        "root": "intro",
+        "parts": [{"caption": "Chapter 2 — x", "chapters": [{"file": "chapters/nope"}]}],
+    }
+    (tmp_path / "book").mkdir()
+    book = _book(tmp_path / "book", toc)
+    (tmp_path / "executed").mkdir()
+    (tmp_path / "records").mkdir()
+    code = bookbuild.main(
+        [
+            "--executed",
+            str(tmp_path / "executed"),
+            "--records",
+            str(tmp_path / "records"),
+            "--book",
+            str(book),
+        ]
+    )
+    assert code == 2
+    assert "'chapters/nope' names no page" in capsys.readouterr().err
+
+
+def test_the_books_toc_gives_chapters_2_and_3_with_their_notebooks() -> None:
+    chapters = bookbuild.toc_chapters(yaml.safe_load((REPO_ROOT / "book" / "_toc.yml").read_text()))
+    assert [c.number for c in chapters] == [2, 3]
+    assert chapters[1].pages == ("fivebar_identification",)
+    assert "published_doe" in chapters[0].pages
+
+
+def test_report_links_rows_to_sections_or_pages(tmp_path: Path) -> None:
+    rec = {"notebook": "a", "values": {}, "report": ROWS}
+    (tmp_path / "a.json").write_text(json.dumps(rec))
+    chapters = [reportpage.Chapter(2, "Chapter 2 — x", ("a",))]
+    link = bookbuild.Linker(
+        {"a": [artefacts.Section("a-s3", "Table 5 — validation", (("table", 5),))]}
+    )
+    text = bookbuild.report_markdown(bookbuild.report_rows(tmp_path, chapters), chapters, link)
+    assert "{ref}`Table 5 <a-s3>`" in text and "{doc}`Eq 8 </chapters/a>`" in text
+    assert "has 6 rows" in text and text.index("## Summary") < text.index("## Chapter 2")
