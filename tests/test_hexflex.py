@@ -156,6 +156,38 @@ def test_bad_geometry_is_refused_by_name_before_meshing(change, message) -> None
         SMALL.replace(**change)
 
 
+def test_geometry_by_name_round_trips_and_refuses_unknown_or_missing_names() -> None:
+    assert geo.HexFlexGeometry.from_dict(SMALL.as_dict()) == SMALL
+    with pytest.raises(ValueError, match=r"unknown: \['colour'\], missing: \['thickness'\]"):
+        geo.HexFlexGeometry.from_dict(
+            {**{k: v for k, v in SMALL.as_dict().items() if k != "thickness"}, "colour": 1.0}
+        )
+
+
+def test_grounded_sectors_clear_the_tabs_and_meet_the_clamped_ends() -> None:
+    polys = geo.ground_polygons(SMALL, outer=40.0)
+    assert len(polys) == 3
+    for poly in polys:
+        r, s = geo.local_coordinates(poly)
+        # no vertex of a sector lies inside a tab (|s| < tab half-width, r > 0 in its frame)
+        inside = (np.abs(s) < SMALL.tab_half_width) & (r > 0)
+        assert not inside.any()
+    # each sector's inner edge is the clamp line r = ground_radius of its two tabs
+    r, _ = geo.local_coordinates(polys[0][:3])
+    assert np.isclose(r, SMALL.ground_radius).sum() >= 3
+
+
+def test_a_stiff_body_keeps_the_symmetry_and_moves_toward_the_frame() -> None:
+    soft = HexFlexModel(SMALL, element="shell", mesh_size=1.0)
+    stiff = HexFlexModel(SMALL, element="shell", mesh_size=1.0, body_factor=1e3)
+    c = stiff.compliance()
+    assert checks.symmetry_defect(c) < 1e-6 and checks.zero_pattern_defect(c) < 1e-6
+    # a stiffer body can only make the structure stiffer: no port compliance grows
+    assert np.all(np.diag(stiff.port_compliance()) <= np.diag(soft.port_compliance()) * (1 + 1e-9))
+    with pytest.raises(ValueError, match=r"body_factor must be in \[1.0, 1000000.0\]"):
+        HexFlexModel(SMALL, element="shell", mesh_size=1.0, body_factor=0.5)
+
+
 def test_bad_input_gets_clear_errors(shell_model: HexFlexModel) -> None:
     with pytest.raises(ValueError, match=r"mesh_size \[mm\] must be"):
         ms.sector_mesh(SMALL, 2.0)

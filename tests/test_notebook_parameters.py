@@ -38,3 +38,18 @@ def test_a_sweep_that_is_not_increasing_is_refused_by_name(tmp_path: Path) -> No
     assert code != 0
     assert "sweep_amplitudes [N] must list at least 2 strictly increasing values" in output
     assert not (tmp_path / "virtual_experiments.json").exists()
+
+
+def test_a_geometry_with_an_unknown_dimension_is_refused_by_name(tmp_path: Path) -> None:
+    args = ["-y", "geometry: {colour: 1.0}"]
+    code, output = _run_with("virtual_experiments", args, tmp_path)
+    assert code != 0
+    assert "unknown: ['colour']" in output
+    assert not (tmp_path / "virtual_experiments.json").exists()
+
+
+def test_a_dimension_out_of_its_bounds_is_refused_before_meshing(tmp_path: Path) -> None:
+    code, output = _run_with("hexflex_model", ["-p", "beam_length", "40.0"], tmp_path)
+    assert code != 0
+    assert "beam_length [mm] must be in [2.0, 30.0], got 40.0" in output
+    assert not (tmp_path / "hexflex_model.json").exists()
