@@ -394,15 +394,20 @@ def hexflex_actuators(g, planar, directions: np.ndarray, centers: np.ndarray) ->
     external edge (``centers``, (3, 2) [mm])."""
     fig, ax = plt.subplots(figsize=(5.6, 5.2), constrained_layout=True)
     _quads(ax, planar.nodes, planar.quads, facecolors="#e6e6e6", edgecolors="none")
+    arrow = 0.27 * np.abs(centers).max()  # arrow length [mm], a fraction of the drawing
+    tips = centers + arrow * directions[0::2, :2]
+    lim = 1.15 * max(np.abs(planar.nodes).max(), np.abs(tips).max())
     for k in range(3):
         c, d = centers[k], directions[2 * k, :2]
         ax.annotate(
-            "", c + 12 * d, c, arrowprops={"arrowstyle": "->", "color": ACTIVE_COLOR, "lw": 2}
+            "", c + arrow * d, c, arrowprops={"arrowstyle": "->", "color": ACTIVE_COLOR, "lw": 2}
         )
         ax.plot(*c, "o", color=OURS_COLOR, ms=8, mfc="none", mew=2)
         ax.plot(*c, ".", color=OURS_COLOR, ms=4)
-        ax.annotate(f"T{k + 1}D1", c + 13 * d, fontsize=8, color=ACTIVE_COLOR)
+        ax.annotate(f"T{k + 1}D1", c + 1.08 * arrow * d, fontsize=8, color=ACTIVE_COLOR)
         ax.annotate(f"T{k + 1}D2 (+z)", c + np.array([2.0, -5.0]), fontsize=8, color=OURS_COLOR)
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_title("Fig 4: actuator directions (D2 out of the page)")
