@@ -268,7 +268,11 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
             kernel, normalize_y=True, n_restarts_optimizer=2, random_state=seed
         )
         with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", category=ConvergenceWarning)
+            warnings.filterwarnings(
+                "ignore",
+                message=".*close to the specified upper bound",
+                category=ConvergenceWarning,
+            )
             out.append(gp.fit(x, y[:, j]))
     return out
 

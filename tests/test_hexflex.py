@@ -82,17 +82,33 @@ def test_flexures_are_structured_with_an_even_element_count_across(size, across,
     assert len(quads) == across * (len(rows) - 1)
 
 
-def test_actuator_loads_act_at_the_external_edge(shell_model: HexFlexModel) -> None:
-    """Each unit load vector has resultant = its direction and moment = (R_t e_r) × direction."""
-    p = shell_model.fe
-    dofs = p.eq.reshape(-1, p.n_comp)[: len(p.coors)]
+@pytest.mark.parametrize("element", ["shell", "q2"])
+def test_actuator_loads_act_at_the_external_edge(element: str) -> None:
+    """Each unit load vector has resultant = its direction and moment = (R_t e_r) × direction
+    (the edge's centre on the mid-plane), over every DOF node (Q2: vertices, edges, faces)."""
+    p = HexFlexModel(SMALL, element=element, mesh_size=1.0).fe
+    coors = np.asarray(p.field.get_coor(), dtype=float)
+    dofs = p.eq.reshape(-1, p.n_comp)[: len(coors)]
     dirs = geo.actuator_directions()
     points = np.c_[geo.actuator_points(SMALL), np.zeros(3)]
     for j in range(6):
         f = np.where(dofs[:, :3] >= 0, p.loads[np.maximum(dofs[:, :3], 0), j], 0.0)
         np.testing.assert_allclose(f.sum(axis=0), dirs[j], atol=1e-12)
-        moment = np.cross(p.coors, f).sum(axis=0)
+        moment = np.cross(coors, f).sum(axis=0)
         np.testing.assert_allclose(moment, np.cross(points[j // 2], dirs[j]), atol=1e-9)
+        loaded = np.abs(f).sum(axis=1) > 0
+        r, s = geo.local_coordinates(coors[loaded])
+        assert np.allclose(r[:, j // 2], SMALL.tab_outer)  # only the external edge is loaded
+        assert np.all(np.abs(s[:, j // 2]) <= SMALL.tab_half_width + 1e-9)
+
+
+def test_the_zero_pattern_checked_is_eq8s() -> None:
+    c = pub.EQ8_ST.copy()
+    assert checks.zero_pattern_defect(c) == 0.0
+    for i, j in zip(*np.nonzero(pub.EQ8_ST == 0), strict=True):
+        bad = c.copy()
+        bad[i, j] = 1e-3 * np.abs(c[i]).max()
+        assert checks.zero_pattern_defect(bad) == pytest.approx(1e-3)
 
 
 def test_model_invariants_symmetry_zero_pattern_reciprocity(shell_model: HexFlexModel) -> None:
@@ -172,12 +188,26 @@ def test_grounded_sectors_clear_the_tabs_and_meet_the_clamped_ends() -> None:
         # no vertex of a sector lies inside a tab (|s| < tab half-width, r > 0 in its frame)
         inside = (np.abs(s) < SMALL.tab_half_width) & (r > 0)
         assert not inside.any()
-    # each sector's inner edge is the clamp line r = ground_radius of its two tabs
-    r, _ = geo.local_coordinates(polys[0][:3])
-    assert np.isclose(r, SMALL.ground_radius).sum() >= 3
+    # every clamped end of a radial segment lies on the inner edge of one sector
+    e_r, e_s = geo.tab_frames()
+    edges = [(p[i], p[i + 1]) for p in polys for i in (0, 1)]
+    for k in range(3):
+        for sign in (1.0, -1.0):
+            for s_end in (
+                SMALL.corner_s - SMALL.radial_width / 2,
+                SMALL.corner_s + SMALL.radial_width / 2,
+            ):
+                q = SMALL.ground_radius * e_r[k] + sign * s_end * e_s[k]
+                dist = [_segment_distance(q, a, b) for a, b in edges]
+                assert min(dist) < 1e-9
 
 
-def test_a_stiff_body_keeps_the_symmetry_and_moves_toward_the_frame() -> None:
+def _segment_distance(q: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    t = np.clip(np.dot(q - a, b - a) / np.dot(b - a, b - a), 0.0, 1.0)
+    return float(np.linalg.norm(q - (a + t * (b - a))))
+
+
+def test_a_stiff_body_keeps_the_symmetry_and_only_stiffens() -> None:
     soft = HexFlexModel(SMALL, element="shell", mesh_size=1.0)
     stiff = HexFlexModel(SMALL, element="shell", mesh_size=1.0, body_factor=1e3)
     c = stiff.compliance()
@@ -308,6 +338,12 @@ def _power_law(g: geo.HexFlexGeometry, exponents: np.ndarray = _EXPONENTS) -> np
 def test_log_sensitivity_recovers_power_law_exponents() -> None:
     got = ident.log_sensitivity(_power_law, SMALL, _FREE)
     np.testing.assert_allclose(got, _EXPONENTS, atol=1e-6)
+    # forward differences, and one-sided ones on a bound, are exact on a power law too
+    np.testing.assert_allclose(ident.log_sensitivity(_power_law, SMALL, _FREE, central=False),
+                               _EXPONENTS, atol=1e-6)  # fmt: skip
+    on_bound = SMALL.replace(thickness=geo.DIMENSION_BOUNDS["thickness"][1])
+    np.testing.assert_allclose(ident.log_sensitivity(_power_law, on_bound, _FREE), _EXPONENTS,
+                               atol=1e-6)  # fmt: skip
     with pytest.raises(ValueError, match="free dimension must be one of"):
         ident.log_sensitivity(_power_law, SMALL, ["colour"])
 
@@ -327,3 +363,13 @@ def test_identify_converges_with_an_inexact_surrogate_jacobian() -> None:
         ident.identify(SMALL, [1.0, 2.0], _FREE, _power_law, _power_law)
     with pytest.raises(ValueError, match="free dimensions must be distinct"):
         ident.identify(SMALL, target, ["thickness", "thickness"], _power_law, _power_law)
+
+
+def test_identify_stops_on_a_bound_instead_of_failing() -> None:
+    """A target that needs a dimension beyond its bound: the fit ends on the bound, named."""
+    low = geo.DIMENSION_BOUNDS["thickness"][0]
+    truth = SMALL.replace(thickness=low)
+    target = ident.target_values(_power_law(truth)) * np.array([1.5, 1.5, 1.5, 1.2])
+    fit = ident.identify(SMALL, target, _FREE, _power_law, _power_law, max_evaluations=10)
+    assert fit.n_evaluations <= 10
+    assert ident.at_bounds(fit.geometry, _FREE) == ["thickness"]

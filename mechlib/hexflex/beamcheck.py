@@ -12,9 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from mechlib.hexflex import mesh as ms
+from mechlib.hexflex.frame import SHEAR_FACTOR
 from mechlib.params import check_choice, check_float, check_int
-
-SHEAR_FACTOR = 5.0 / 6.0
 
 
 def timoshenko_tip(

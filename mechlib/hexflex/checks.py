@@ -9,6 +9,9 @@ from mechlib.hexflex.geometry import TAB_ANGLES_DEG, TAB_D1_SIGNS
 #: Pose rows and force columns that are in-plane (x, y, θz; D1) and out-of-plane (z, θx, θy; D2).
 IN_PLANE_ROWS, OUT_ROWS = (0, 1, 5), (2, 3, 4)
 D1_COLS, D2_COLS = (0, 2, 4), (1, 3, 5)
+#: (row, column) of the zeros that the part's mirror symmetry about T1's axis adds: T1's loads
+#: (along x and z) cause no y translation nor θy rotation (y←T1D1, θy←T1D2).
+MIRROR_ZEROS: tuple[tuple[int, int], ...] = ((1, 0), (4, 1))
 
 
 def rotate_pose(pose: np.ndarray, angle_deg: float) -> np.ndarray:
@@ -39,9 +42,10 @@ def symmetry_defect(compliance: np.ndarray) -> float:
 
 
 def zero_pattern_defect(compliance: np.ndarray) -> float:
-    """Largest out-of-plane response to D1 or in-plane response to D2, relative to its row."""
+    """Largest entry of Eq 8's zero pattern relative to its row's largest entry: out-of-plane
+    responses to D1, in-plane responses to D2 (mid-plane symmetry) and :data:`MIRROR_ZEROS`."""
     c = np.asarray(compliance, dtype=float)
     scale = np.abs(c).max(axis=1)
-    cross = [abs(c[i, j]) / scale[i] for i in OUT_ROWS for j in D1_COLS]
-    cross += [abs(c[i, j]) / scale[i] for i in IN_PLANE_ROWS for j in D2_COLS]
-    return float(max(cross))
+    zeros = [(i, j) for i in OUT_ROWS for j in D1_COLS]
+    zeros += [(i, j) for i in IN_PLANE_ROWS for j in D2_COLS] + list(MIRROR_ZEROS)
+    return float(max(abs(c[i, j]) / scale[i] for i, j in zeros))

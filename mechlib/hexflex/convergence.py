@@ -17,6 +17,7 @@ from mechlib.hexflex.model import (
     COARSE_WIDTHS,
     ELEMENTS,
     HexFlexModel,
+    coarsening_for,
 )
 from mechlib.params import check_float
 
@@ -33,6 +34,18 @@ def study(
 
     The largest element (stage, tabs) stays ``coarse_widths`` narrowest flexure widths, so the
     fractions refine the flexures; call again with a smaller ``coarse_widths`` to refine the rest.
+
+    Parameters
+    ----------
+    geometry : HexFlexGeometry
+    fractions : list of float
+        Flexure element sizes as fractions of the narrowest flexure width, each in (0, 1].
+    young, poisson : float
+        Material constants [MPa, -].
+    elements : tuple of str
+        Element kinds to solve at every fraction (``model.ELEMENTS``).
+    coarse_widths : float
+        Largest element of the stage and tabs, in narrowest flexure widths, in [1, 64].
 
     Returns
     -------
@@ -52,7 +65,7 @@ def study(
                 poisson=poisson,
                 element=kind,
                 mesh_size=size,
-                coarsening=max(1.0, coarse_widths / fraction),
+                coarsening=coarsening_for(coarse_widths, fraction),
             )
             rows.append(
                 {

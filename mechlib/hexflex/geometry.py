@@ -43,6 +43,8 @@ TAB_D1_SIGNS: tuple[int, int, int] = (-1, 1, -1)
 #: The part's material, Al 7075-T6 (thesis sec. 2.6.1): Young's modulus [MPa], Poisson's ratio.
 AL7075_YOUNG_MPA = 71_700.0
 AL7075_POISSON = 0.33
+#: Largest Poisson's ratio the models accept (0.5 is incompressible: the stiffness is singular).
+MAX_POISSON = 0.499
 #: Part labels returned by :func:`classify`.
 PARTS: tuple[str, ...] = ("stage", "tab", "beam", "corner", "radial")
 #: Smallest slot between two separate parts of the plate [mm] (a wire-EDM or water-jet kerf).
@@ -97,8 +99,8 @@ class HexFlexGeometry:
             f"< √3/4 · stage_radius = {widest:.4g}",
             "the tab's root leaves the stage's sixth",
         )
-        # the stage's edge crosses the tab's side at r = R_s − √3 s₀; the D1 segment must clear it
-        low = g.stage_radius - np.sqrt(3) * g.tab_half_width + 0.5 * g.beam_width + gap
+        # the stage's edge crosses the tab's side at r = stage_edge; the D1 segment must clear it
+        low = g.stage_edge + 0.5 * g.beam_width + gap
         _need(
             g.beam_radius >= low,
             "beam_radius",
@@ -154,17 +156,20 @@ class HexFlexGeometry:
         return self.beam_radius + self.radial_length
 
     @property
+    def stage_edge(self) -> float:
+        """Radius where the stage's edge crosses the tab's side ``s = tab_half_width`` [mm]."""
+        return self.stage_radius - np.sqrt(3) * self.tab_half_width
+
+    @property
     def tab_start(self) -> float:
         """Radius where the tab rectangle starts, inside the stage and inside the 60° sector."""
         low = self.tab_half_width / np.sqrt(3)  # its corner on the sector's 30° cut line
-        high = self.stage_radius - np.sqrt(3) * self.tab_half_width  # its corner on the stage edge
-        return 0.5 * (low + high)
+        return 0.5 * (low + self.stage_edge)  # ... and its corner inside the stage edge
 
     @property
     def stage_gap(self) -> float:
         """Radial slot between the stage's edge and the D1 segment at the tab's side [mm]."""
-        edge = self.stage_radius - np.sqrt(3) * self.tab_half_width
-        return self.beam_radius - 0.5 * self.beam_width - edge
+        return self.beam_radius - 0.5 * self.beam_width - self.stage_edge
 
     @property
     def narrowest(self) -> float:
@@ -290,9 +295,3 @@ def classify(points: np.ndarray, g: HexFlexGeometry) -> np.ndarray:
             hit = np.any(inside, axis=1) & (label < 0)
             label[hit] = PARTS.index(part)
     return label
-
-
-def tab_of(points: np.ndarray) -> np.ndarray:
-    """Index (0, 1, 2) of the leg whose axis is nearest in angle to each point."""
-    r, _ = local_coordinates(points)
-    return np.argmax(r, axis=1)

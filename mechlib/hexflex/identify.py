@@ -64,24 +64,63 @@ def log_sensitivity(
     g: HexFlexGeometry,
     names: Sequence[str],
     rel_step: float = 1e-3,
+    central: bool = True,
 ) -> np.ndarray:
-    """d log(magnitude_i) / d log(dimension_j) (4, k) by central differences at ``g``.
+    """d log|magnitude_i| / d log(dimension_j) (4, k) by finite differences at ``g``.
 
     Its singular values say how many combinations of the dimensions the four magnitudes fix.
+
+    Parameters
+    ----------
+    compliance_fn : callable
+        Geometry → 6 × 6 compliance (the frame model, an FE model, ...).
+    g : HexFlexGeometry
+    names : sequence of str
+        The dimensions to differentiate by.
+    rel_step : float
+        Step in log(dimension), in (0, 0.1].
+    central : bool
+        Central differences (two evaluations per dimension) or forward ones (one, plus one at
+        ``g``). Where a step would leave the dimension's bounds or make an invalid geometry, the
+        one-sided difference on the other side is used.
 
     Raises
     ------
     ValueError
-        If a name is not a dimension or ``rel_step`` is outside (0, 0.1].
+        If a name is not a dimension, ``rel_step`` is outside (0, 0.1], or neither side of a
+        dimension can be stepped.
     """
     names = check_free(names)
     rel_step = check_float("rel_step", rel_step, low=0.0, high=0.1, low_open=True)
+    here: list[np.ndarray] = []
+
+    def at(n: str, sign: float) -> np.ndarray | None:
+        if sign == 0.0:
+            if not here:
+                here.append(np.log(np.abs(target_values(compliance_fn(g)))))
+            return here[0]
+        value = getattr(g, n) * np.exp(sign * rel_step)
+        low, high = DIMENSION_BOUNDS[n]
+        if not low <= value <= high:
+            return None
+        try:
+            stepped = g.replace(**{n: value})
+        except ValueError:
+            return None
+        return np.log(np.abs(target_values(compliance_fn(stepped))))
+
     out = np.empty((4, len(names)))
     for j, n in enumerate(names):
-        v = getattr(g, n)
-        up = target_values(compliance_fn(g.replace(**{n: v * np.exp(rel_step)})))
-        down = target_values(compliance_fn(g.replace(**{n: v * np.exp(-rel_step)})))
-        out[:, j] = (np.log(up) - np.log(down)) / (2 * rel_step)
+        up = at(n, 1.0)
+        down = at(n, -1.0) if central or up is None else None
+        if up is not None and down is not None:
+            out[:, j] = (up - down) / (2 * rel_step)
+        elif up is not None:
+            out[:, j] = (up - at(n, 0.0)) / rel_step
+        elif down is not None:
+            out[:, j] = (at(n, 0.0) - down) / rel_step
+        else:
+            raise ValueError(f"{n} cannot be stepped by rel_step = {rel_step:g} on either side")
     return out
 
 
@@ -122,6 +161,26 @@ def identify(
     invalid or leaves its bounds). Stops at max |r| <= ``tol`` or after ``max_evaluations`` calls
     of ``compliance_fn``; returns the best geometry seen.
 
+    Parameters
+    ----------
+    start : HexFlexGeometry
+        Starting geometry; the dimensions not in ``free`` keep its values.
+    target : array_like (4,)
+        The magnitudes to meet, in the order of :data:`TARGET_LABELS`.
+    free : sequence of str
+        The dimensions to fit.
+    compliance_fn, surrogate_fn : callable
+        Geometry → 6 × 6 compliance: the model to fit (FE) and the one whose sensitivities
+        steer the steps (the frame model).
+    max_evaluations : int
+        Calls of ``compliance_fn`` allowed, in [1, 100].
+    tol : float
+        Stop when every |log(achieved / target)| is at most this, in (0, 1].
+
+    Returns
+    -------
+    Identification
+
     Raises
     ------
     ValueError
@@ -137,7 +196,7 @@ def identify(
     g = start
     history: list[np.ndarray] = []
     for _ in range(max_evaluations):
-        achieved = target_values(compliance_fn(g))
+        achieved = np.abs(target_values(compliance_fn(g)))  # a sign flip is a misfit, not NaN
         history.append(np.r_[[getattr(g, n) for n in free], achieved])
         r = np.log(achieved / target)
         if np.abs(r).max() <= tol or len(history) == max_evaluations:

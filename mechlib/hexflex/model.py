@@ -20,12 +20,10 @@ from threadpoolctl import threadpool_limits
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import mesh as ms
 from mechlib.hexflex import problem as fe
-from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.params import check_choice, check_float, check_matrix
 
 ELEMENTS = fe.ELEMENTS
-#: Largest Poisson's ratio accepted (0.5 is incompressible: the stiffness becomes singular).
-MAX_POISSON = 0.499
 #: Largest |actuator force| the model accepts [N] (Table 1 uses ±1 N; sweeps go further).
 MAX_FORCE_N = 50.0
 #: Default element size at the flexures as a fraction of the narrowest flexure width (two
@@ -82,7 +80,7 @@ class HexFlexModel:
             "mesh_size [mm]", size, low=0.0, high=g.narrowest, low_open=True
         )
         if self.coarsening is None:
-            self.coarsening = max(1.0, COARSE_WIDTHS * g.narrowest / self.mesh_size)
+            self.coarsening = coarsening_for(COARSE_WIDTHS, self.mesh_size / g.narrowest)
         self.coarsening = check_float("coarsening", self.coarsening, low=1.0, high=64.0)
         t0 = time.perf_counter()
         sector = ms.sector_mesh(g, self.mesh_size, self.coarsening)
@@ -241,6 +239,12 @@ class HexFlexModel:
         n = len(self.planar.nodes)
         vert = full[: len(self.fe.coors), :3]
         return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def coarsening_for(coarse_widths: float, fraction: float) -> float:
+    """The ``coarsening`` that makes the largest element ``coarse_widths`` narrowest flexure
+    widths when the flexure elements are ``fraction`` of that width (at least 1)."""
+    return max(1.0, coarse_widths / fraction)
 
 
 def factorise(matrix):
