@@ -249,9 +249,10 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
     """One scikit-learn Gaussian process per output (constant × RBF + white noise kernel,
     normalised targets, seeded optimiser restarts).
 
-    On responses that are linear in the factors the optimal RBF length scales are infinite, so
-    the optimiser ends on their upper bound; scikit-learn's ConvergenceWarning saying so is
-    expected here and not shown.
+    On noise-free responses that are linear in the factors the optimal RBF length scales are
+    infinite and the optimal noise level zero, so the optimiser ends on those bounds;
+    scikit-learn's ConvergenceWarnings saying so are expected here and not shown (any other
+    warning is).
     """
     import warnings
 
@@ -270,7 +271,7 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
         with warnings.catch_warnings():
             warnings.filterwarnings(
                 "ignore",
-                message=".*close to the specified upper bound",
+                message=".*close to the specified (upper|lower) bound",
                 category=ConvergenceWarning,
             )
             out.append(gp.fit(x, y[:, j]))
