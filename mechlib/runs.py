@@ -3,6 +3,10 @@
 ``python -m mechlib.runs --notebook notebooks/X.ipynb --out build/runs -- -p name value ...``
 executes the notebook with papermill into ``build/runs/X/<parameters>/`` with its record there
 too, so the default run in ``build/executed`` and ``build/records`` is never overwritten.
+
+:func:`papermill_command` is the one papermill command line of the Python code (this module,
+:func:`mechlib.records.rerun_identical`, the notebook-parameter tests); the Makefile keeps its
+own for the book's notebooks.
 """
 
 from __future__ import annotations
@@ -12,9 +16,47 @@ import os
 import re
 import subprocess
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 
 from mechlib.records import RECORDS_ENV
+
+
+def papermill_command(
+    notebook: Path, output: Path, args: Sequence[str] = (), *, python: str = sys.executable
+) -> list[str]:
+    """The papermill command line that executes ``notebook`` into ``output``.
+
+    Parameters
+    ----------
+    notebook : Path
+        Source notebook; it runs with its own folder as working directory.
+    output : Path
+        Executed notebook to write.
+    args : sequence of str
+        Further papermill arguments (``-p name value`` …), appended as given.
+    python : str
+        Interpreter of the environment whose ``papermill`` script is used (default: this one).
+
+    Returns
+    -------
+    list of str
+        ``papermill -k python3 --cwd <notebook folder> --no-progress-bar <notebook> <output>
+        <args>``.
+    """
+    papermill = str(Path(python).with_name("papermill"))
+    notebook = Path(notebook)
+    return [
+        papermill,
+        "-k",
+        "python3",
+        "--cwd",
+        str(notebook.parent),
+        "--no-progress-bar",
+        str(notebook),
+        str(output),
+        *args,
+    ]
 
 
 def run_folder_name(papermill_args: list[str]) -> str:
@@ -34,18 +76,7 @@ def main(argv: list[str] | None = None) -> int:
     folder = (args.out / args.notebook.stem / run_folder_name(extra)).resolve()
     folder.mkdir(parents=True, exist_ok=True)
     out_nb = folder / args.notebook.name
-    papermill = str(Path(sys.executable).with_name("papermill"))
-    cmd = [
-        papermill,
-        "-k",
-        "python3",
-        "--cwd",
-        str(args.notebook.parent),
-        "--no-progress-bar",
-        str(args.notebook),
-        str(out_nb),
-        *extra,
-    ]
+    cmd = papermill_command(args.notebook, out_nb, extra)
     env = dict(os.environ, **{RECORDS_ENV: str(folder)})
     done = subprocess.run(cmd, env=env, check=False)
     print(f"executed notebook: {out_nb}")
