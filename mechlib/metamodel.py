@@ -211,11 +211,6 @@ def running_error_metrics(truth: object, predicted: object) -> dict[str, np.ndar
     }
 
 
-def check_runs(name: str, n: object, low: int = 1, high: int = 1_000_000) -> int:
-    """Validate a run count parameter."""
-    return check_int(name, n, low=low, high=high)
-
-
 def fit_quadratic(design: object, responses: object) -> dict[str, object]:
     """Least-squares fit of the full second-order model of Eq 6 (see :func:`quadratic_features`).
 

@@ -207,8 +207,9 @@ def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable
     The second run starts from an empty FE cache (``$MECHLIB_FE_CACHE`` in a temporary folder),
     so it checks that two cold computations agree, not merely that cached results are returned.
     """
+    from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
+
     problems = []
-    papermill = str(Path(python).with_name("papermill"))
     with tempfile.TemporaryDirectory() as tmp:
         env = dict(os.environ, **{RECORDS_ENV: tmp, FE_CACHE_ENV: str(Path(tmp) / "fe-cache")})
         for nb in sorted(Path(notebooks).glob("*.ipynb")):
@@ -216,16 +217,7 @@ def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable
             if not first.exists():
                 problems.append(f"{nb.stem}: no first-run record at {first}")
                 continue
-            cmd = [
-                papermill,
-                "-k",
-                "python3",
-                "--cwd",
-                str(notebooks),
-                "--no-progress-bar",
-                str(nb),
-                str(Path(tmp) / nb.name),
-            ]
+            cmd = papermill_command(nb, Path(tmp) / nb.name, python=python)
             subprocess.run(cmd, check=True, env=env, capture_output=True)
             if (Path(tmp) / first.name).read_bytes() != first.read_bytes():
                 diffs = compare(load(Path(tmp) / first.name), load(first))

@@ -114,24 +114,46 @@ def lenth(effects: object, alpha: float = 0.05) -> Lenth:
     s0 = S0_FACTOR * nu
     trimmed = c[c < TRIM_FACTOR * s0]
     pse = S0_FACTOR * float(np.median(trimmed)) if trimmed.size else 0.0
+    d, gamma, me, sme = _margins(pse, m, alpha)
+    return Lenth(m=m, median_abs=nu, s0=s0, pse=pse, d=d, gamma=gamma, me=me, sme=sme)
+
+
+def _margins(scale: float, m: int, alpha: float) -> tuple[float, float, float, float]:
+    """Lenth's margins for a checked scale, effect count and level: ``(d, γ, ME, SME)``.
+
+    ``d = m / 3``, ``γ = (1 + (1 − α)^(1/m)) / 2``, ``ME = t(1 − α/2; d) · scale`` and
+    ``SME = t(γ; d) · scale`` (the module docstring's formulas, for any α).
+    """
     d = m / 3.0
     gamma = (1.0 + (1.0 - alpha) ** (1.0 / m)) / 2.0
-    me = float(stats.t.ppf(1.0 - alpha / 2.0, d)) * pse
-    sme = float(stats.t.ppf(gamma, d)) * pse
-    return Lenth(m=m, median_abs=nu, s0=s0, pse=pse, d=d, gamma=gamma, me=me, sme=sme)
+    me = float(stats.t.ppf(1.0 - alpha / 2.0, d)) * scale
+    sme = float(stats.t.ppf(gamma, d)) * scale
+    return d, gamma, me, sme
 
 
 def margins_from_scale(scale: float, m: int, alpha: float = 0.05) -> tuple[float, float]:
     """ME and SME for a given scale estimate and number of effects (no trimming step).
 
     Used to test hypotheses about how a published margin was computed.
+
+    Parameters
+    ----------
+    scale : float
+        Scale estimate (a PSE, or another estimate to test), >= 0.
+    m : int
+        Number of effects, >= 3.
+    alpha : float
+        Two-sided level, in (0, 0.5].
+
+    Returns
+    -------
+    tuple of float
+        ``(ME, SME)``, the same formulas as :func:`lenth` with ``scale`` in place of the PSE.
     """
     scale = check_float("scale", scale, low=0.0)
     m = check_int("m", m, low=MIN_EFFECTS)
     alpha = check_float("alpha", alpha, low=0.0, high=0.5, low_open=True)
-    d = m / 3.0
-    gamma = (1.0 + (1.0 - alpha) ** (1.0 / m)) / 2.0
-    return float(stats.t.ppf(1 - alpha / 2, d)) * scale, float(stats.t.ppf(gamma, d)) * scale
+    return _margins(scale, m, alpha)[2:]
 
 
 def half_normal_points(effects: object) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -82,6 +82,50 @@ def test_a_failed_task_is_named_and_completed_results_are_kept(tmp_path) -> None
     np.testing.assert_allclose(full[250:500], ex.model_for(SPEC).poses(d[250:500]))
 
 
+class FakeTask:
+    """Stands in for the FE task: a known pose per row, and an exception at one call."""
+
+    def __init__(self, fail_at: int, error: BaseException) -> None:
+        self.fail_at, self.error, self.calls = fail_at, error, 0
+
+    def __call__(self, spec, kind, forces, steps) -> np.ndarray:
+        self.calls += 1
+        if self.calls == self.fail_at:
+            raise self.error
+        return 2.0 * forces
+
+
+def test_ctrl_c_in_a_task_stops_the_run_at_once(monkeypatch, tmp_path) -> None:
+    task = FakeTask(fail_at=2, error=KeyboardInterrupt())
+    monkeypatch.setattr(ex, "_task", task)
+    with pytest.raises(KeyboardInterrupt):
+        ex.run_experiments(SPEC, _design(600), cache_dir=tmp_path, progress=False)
+    assert task.calls == 2  # the third task never ran
+
+
+@pytest.mark.parametrize("error", [KeyboardInterrupt(), SystemExit(3)])
+def test_the_in_process_executor_lets_interrupts_through(error) -> None:
+    def interrupted():
+        raise error
+
+    with pytest.raises(type(error)):
+        ex.InProcessExecutor().submit(interrupted)
+
+
+def test_an_ordinary_exception_in_process_is_a_failed_task(monkeypatch, tmp_path) -> None:
+    task = FakeTask(fail_at=2, error=ArithmeticError("diverged"))
+    monkeypatch.setattr(ex, "_task", task)
+    d = _design(600)  # three tasks of LINEAR_BLOCK = 250 rows
+    msg = r"250 of 600 experiments failed \(first: run 250, .*: diverged\); 350 completed"
+    with pytest.raises(ex.ExperimentError, match=msg) as info:
+        ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)
+    assert task.calls == 3  # the remaining task still ran
+    assert info.value.failed == list(range(250, 500))
+    assert sorted(info.value.completed) == [*range(250), *range(500, 600)]
+    np.testing.assert_array_equal(info.value.completed[599], 2.0 * d[599])
+    assert len(list(tmp_path.glob("*.npy"))) == 2  # both completed tasks cached
+
+
 def test_bad_designs_are_refused_by_name() -> None:
     with pytest.raises(ValueError, match="design must have 6 factor columns"):
         ex.run_experiments(SPEC, np.zeros((3, 5)), progress=False)

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from scipy.linalg import block_diag
 
 from mechlib import published as pub
 from mechlib.fivebar import identification as idf
@@ -70,6 +71,25 @@ def test_noise_free_identification_recovers_the_real_parameters() -> None:
     both = idf.identify_traditional(m["points"], m["psi1"], m["psi2"], PHI1, PHI2, MODES)
     np.testing.assert_allclose(both, np.r_[REAL1, REAL2], atol=1e-10)
     assert idf.position_errors(CANDIDATES, both[:6], both[6:], REAL1, REAL2, MODES).max() < 1e-9
+
+
+def test_posture_blocks_are_diag_c1_c2_sized_by_the_legs() -> None:
+    c1 = np.array([[1.0, 2.0], [3.0, 4.0]])  # two postures, a 2-parameter leg
+    c2 = np.array([[5.0, 6.0, 7.0], [8.0, 9.0, 10.0]])  # and a 3-parameter leg
+    expected = [
+        [[1.0, 2.0, 0.0, 0.0, 0.0], [0.0, 0.0, 5.0, 6.0, 7.0]],
+        [[3.0, 4.0, 0.0, 0.0, 0.0], [0.0, 0.0, 8.0, 9.0, 10.0]],
+    ]
+    assert idf.posture_blocks(c1, c2).tolist() == expected
+    with pytest.raises(ValueError, match=r"same N postures, got shapes \(2, 2\) and \(1, 3\)"):
+        idf.posture_blocks(c1, c2[:1])
+
+
+def test_total_jacobian_is_the_block_diagonal_of_the_legs() -> None:
+    c1 = idf.identification_jacobian(CANDIDATES, PHI1, MODES[0])
+    c2 = idf.identification_jacobian(CANDIDATES, PHI2, MODES[1])
+    total = idf.total_jacobian(CANDIDATES, PHI1, PHI2, MODES)
+    np.testing.assert_array_equal(total, block_diag(c1, c2))
 
 
 def test_active_selection_equals_svd_reference() -> None:

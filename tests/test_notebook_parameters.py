@@ -3,19 +3,18 @@
 from __future__ import annotations
 
 import subprocess
-import sys
 from pathlib import Path
 
 from mechlib.records import REPO_ROOT
+from mechlib.runs import papermill_command
 
 
 def _run_with(name: str, args: list[str], tmp_path: Path) -> tuple[int, str]:
     """Run notebooks/<name>.ipynb with papermill ``args``; return its exit code and all output."""
-    papermill = str(Path(sys.executable).with_name("papermill"))
     nb = REPO_ROOT / "notebooks" / f"{name}.ipynb"
     out = tmp_path / "out.ipynb"
     done = subprocess.run(
-        [papermill, "-k", "python3", "--cwd", str(nb.parent), str(nb), str(out), *args],
+        papermill_command(nb, out, args),
         capture_output=True,
         text=True,
         env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},

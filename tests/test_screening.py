@@ -24,6 +24,28 @@ def test_lenth_by_hand_six_effects() -> None:
     assert res.active(np.array([8.0, -1.0])).tolist() == [True, False]
 
 
+def test_margins_from_scale_known_answers() -> None:
+    # m = 6: d = 2, where Student's t has a closed form
+    gamma = (1 + 0.95 ** (1 / 6)) / 2
+    t_gamma = (2 * gamma - 1) / np.sqrt(2 * gamma * (1 - gamma))
+    me, sme = screening.margins_from_scale(1.5, 6)
+    assert me == pytest.approx(t975_df2() * 1.5, rel=1e-10)
+    assert sme == pytest.approx(t_gamma * 1.5, rel=1e-10)
+    # Lenth (1989), m = 15 effects (d = 5): t(0.975; 5) = 2.571 and t(γ; 5) = 5.219
+    me, sme = screening.margins_from_scale(1.0, 15)
+    assert me == pytest.approx(2.5706, abs=1e-4) and sme == pytest.approx(5.2187, abs=1e-4)
+    # one formula: lenth's margins are margins_from_scale at its own PSE
+    res = screening.lenth([8.0, -1.0, 2.0, 0.5, 1.0, -3.0, 0.7], alpha=0.1)
+    assert screening.margins_from_scale(res.pse, res.m, 0.1) == (res.me, res.sme)
+
+
+def test_margins_from_scale_refuses_bad_input_by_name() -> None:
+    with pytest.raises(ValueError, match=r"scale must be >= 0"):
+        screening.margins_from_scale(-1.0, 6)
+    with pytest.raises(ValueError, match=r"m must be >= 3"):
+        screening.margins_from_scale(1.0, 2)
+
+
 def test_main_effects_of_a_known_linear_response() -> None:
     x = np.array([[-1, -1], [1, -1], [-1, 1], [1, 1]], dtype=float)
     y = 5 + 3 * x[:, 0] - 2 * x[:, 1]

@@ -17,7 +17,6 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from mechlib.fivebar.kinematics import (
-    N_LEG_PARAMS,
     PARAM_NAMES,
     SINGULAR_TOL,
     active_angle,
@@ -178,17 +177,56 @@ def simulate_measurements(
     }
 
 
+def posture_blocks(c1: object, c2: object) -> np.ndarray:
+    """The traditional identification matrix of each shared posture: ``diag(C1_j, C2_j)``.
+
+    Leg κ's reading depends only on φκ, so at posture ``j`` the two readings give the rows
+    ``[C1_j, 0]`` and ``[0, C2_j]`` over the stacked parameters ``[φ1, φ2]``.
+
+    Parameters
+    ----------
+    c1, c2 : array_like, shape (N, n1) and (N, n2)
+        Identification matrices of legs 1 and 2 (:func:`identification_jacobian`) at the same
+        N postures; ``n1`` and ``n2`` are the lengths of the legs' parameter vectors.
+
+    Returns
+    -------
+    numpy.ndarray, shape (N, 2, n1 + n2)
+        Block ``j``: row 0 ``[C1_j, 0]``, row 1 ``[0, C2_j]``.
+
+    Raises
+    ------
+    ValueError
+        If ``c1`` and ``c2`` are not matrices over the same number of postures.
+    """
+    a, b = np.asarray(c1, dtype=float), np.asarray(c2, dtype=float)
+    if a.ndim != 2 or b.ndim != 2 or len(a) != len(b):
+        raise ValueError(
+            f"c1 and c2 must be (N, n1) and (N, n2) matrices over the same N postures, got "
+            f"shapes {a.shape} and {b.shape}"
+        )
+    n1 = a.shape[1]
+    blocks = np.zeros((len(a), 2, n1 + b.shape[1]))
+    blocks[:, 0, :n1], blocks[:, 1, n1:] = a, b
+    return blocks
+
+
 def total_jacobian(
     points: object, phi1: object, phi2: object, modes: tuple[int, int]
 ) -> np.ndarray:
-    """Traditional total identification matrix over shared postures: block diagonal (2N, 12)."""
-    c1 = identification_jacobian(points, phi1, modes[0])
-    c2 = identification_jacobian(points, phi2, modes[1])
-    n = len(c1)
-    c = np.zeros((2 * n, 2 * N_LEG_PARAMS))
-    c[:n, :N_LEG_PARAMS] = c1
-    c[n:, N_LEG_PARAMS:] = c2
-    return c
+    """Traditional total identification matrix over shared postures, block diagonal.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2N, n1 + n2)
+        ``diag(C1, C2)``: the N rows of leg 1's readings, then the N rows of leg 2's (the rows
+        of :func:`posture_blocks` grouped by leg).
+    """
+    blocks = posture_blocks(
+        identification_jacobian(points, phi1, modes[0]),
+        identification_jacobian(points, phi2, modes[1]),
+    )
+    return np.concatenate([blocks[:, 0], blocks[:, 1]])
 
 
 def identify_traditional(
@@ -204,20 +242,23 @@ def identify_traditional(
 ) -> np.ndarray:
     """All twelve parameters at once from one shared posture set (Eq 19 on the total matrix).
 
-    Returns the stacked ``[φ1, φ2]``. The Gauss–Newton step solves the full (2N × 12) system; it
-    equals two independent leg solves because the matrix is block diagonal.
+    Returns the stacked ``[φ1, φ2]``. The Gauss–Newton step solves the full (2N × 12) system of
+    :func:`total_jacobian`; it equals two independent leg solves because the matrix is block
+    diagonal.
     """
-    phi = np.concatenate([check_leg(phi1_0, "phi1_0"), check_leg(phi2_0, "phi2_0")])
+    phi1_0 = check_leg(phi1_0, "phi1_0")
+    phi = np.concatenate([phi1_0, check_leg(phi2_0, "phi2_0")])
+    n1 = len(phi1_0)
     p = np.asarray(points, dtype=float)
     q = np.concatenate([np.asarray(psi1, dtype=float), np.asarray(psi2, dtype=float)])
     check_rank(
-        total_jacobian(p, phi[:6], phi[6:], modes),
+        total_jacobian(p, phi[:n1], phi[n1:], modes),
         tuple(f"{n}{k}" for k in (1, 2) for n in PARAM_NAMES),
     )
     for _ in range(check_int("max_iter", max_iter, low=1, high=10_000)):
-        c = total_jacobian(p, phi[:6], phi[6:], modes)
+        c = total_jacobian(p, phi[:n1], phi[n1:], modes)
         pred = np.concatenate(
-            [joint_reading(p, phi[:6], modes[0]), joint_reading(p, phi[6:], modes[1])]
+            [joint_reading(p, phi[:n1], modes[0]), joint_reading(p, phi[n1:], modes[1])]
         )
         dphi = np.linalg.lstsq(c, q - pred, rcond=None)[0]
         phi = phi + dphi

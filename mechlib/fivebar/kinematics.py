@@ -24,9 +24,12 @@ NOMINAL_MODES: tuple[int, int] = (1, -1)
 NOMINAL_ASSEMBLY = 1
 """End-effector above the elbows (Fig 10)."""
 REACH_TOL = 1e-12
-#: Smallest |sine| of a link angle (see :func:`singularity_measures`) accepted as a regular pose.
+"""Round-off slack of the reach tests: |cos| <= 1 + slack in the inverse kinematics (a leg reaches
+a point) and h² >= −slack in the forward kinematics (the distal links close the loop)."""
 SINGULAR_TOL = 1e-6
-"""Slack on |cos| <= 1 when testing whether a leg reaches a point."""
+"""Smallest |sine| of a link angle (see :func:`singularity_measures`) accepted as a regular pose:
+:func:`check_regular`'s default, and the serial-singularity guard of the identification
+Jacobian (:func:`mechlib.fivebar.identification.identification_jacobian`)."""
 
 
 def leg_keys(leg: int) -> tuple[str, ...]:

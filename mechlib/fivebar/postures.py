@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.params import check_float, check_int
+from mechlib.params import check_int
 
 START_REGULARISATION = 1e-8
 """Greedy selection starts from M = ε·mean(diag GᵀG)·I so that M⁻¹ exists (Sun & Hollerbach)."""
@@ -154,8 +154,3 @@ def select_reference_svd(candidates: object, n_select: int, max_passes: int = 20
         if not improved:
             break
     return np.array(chosen)
-
-
-def check_sigma(sigma: float) -> float:
-    """Measurement noise must be >= 0."""
-    return check_float("sigma", sigma, low=0.0)

@@ -62,12 +62,10 @@ def select(
     """Posture indices: ``leg1``, ``leg2`` (divide and conquer) and ``trad`` (shared)."""
     c1 = idf.identification_jacobian(candidates, mech.nominal1, mech.modes[0])
     c2 = idf.identification_jacobian(candidates, mech.nominal2, mech.modes[1])
-    blocks = np.zeros((len(candidates), 2, 12))
-    blocks[:, 0, :6], blocks[:, 1, 6:] = c1, c2
     return {
         "leg1": ps.select_active(c1, n_per_leg),
         "leg2": ps.select_active(c2, n_per_leg),
-        "trad": ps.select_active(blocks, n_shared),
+        "trad": ps.select_active(idf.posture_blocks(c1, c2), n_shared),
     }
 
 
@@ -102,7 +100,8 @@ def one_trial(
 
 def position_error_map(mech: Mechanism, phi: np.ndarray, grid: np.ndarray) -> np.ndarray:
     """|position error| at each grid point when the controller uses parameters ``phi`` (12,)."""
-    return idf.position_errors(grid, phi[:6], phi[6:], mech.real1, mech.real2, mech.modes)
+    n1 = len(mech.real1)
+    return idf.position_errors(grid, phi[:n1], phi[n1:], mech.real1, mech.real2, mech.modes)
 
 
 def monte_carlo(

@@ -78,11 +78,19 @@ class InProcessExecutor(cf.Executor):
     """Runs each submitted call at once in the calling thread (the default executor)."""
 
     def submit(self, fn, /, *args, **kwargs):
+        """Call ``fn(*args, **kwargs)`` now; its result or ``Exception`` goes into the future.
+
+        ``KeyboardInterrupt``, ``SystemExit`` and the other ``BaseException`` subclasses that are
+        not an ``Exception`` are not caught: they propagate at once, so Ctrl-C stops the whole
+        run instead of failing one task and going on with the next.
+        """
         fut: cf.Future = cf.Future()
         try:
-            fut.set_result(fn(*args, **kwargs))
-        except BaseException as err:  # reported through the future, as any executor does
+            result = fn(*args, **kwargs)
+        except Exception as err:  # reported through the future, as any executor does
             fut.set_exception(err)
+        else:
+            fut.set_result(result)
         return fut
 
 
@@ -191,7 +199,7 @@ def run_experiments(
             out[rows], done[rows] = np.load(path), True
             continue
         pending[pool.submit(_task, spec, kind, d[rows], steps)] = rows
-    failed: list[tuple[int, BaseException]] = []
+    failed: list[tuple[int, Exception]] = []
     bar = None
     if progress and pending:
         from tqdm.auto import tqdm

@@ -1,0 +1,179 @@
+"""``make run``'s helpers: the papermill command, parameter-name checks, the failure line."""
+
+from __future__ import annotations
+
+import base64
+import json
+from pathlib import Path
+
+import pytest
+
+from mechlib import runs
+from mechlib.records import REPO_ROOT
+
+ALLOWED = ["seed", "sigma", "n_per_leg", "sweep_amplitudes"]
+
+
+def _notebook(path: Path, cells: list[dict]) -> Path:
+    path.write_text(json.dumps({"cells": cells, "metadata": {}, "nbformat": 4}))
+    return path
+
+
+def _parameters_cell(source: list[str]) -> dict:
+    return {"cell_type": "code", "metadata": {"tags": ["parameters"]}, "source": source}
+
+
+def test_papermill_command_is_the_one_command_line() -> None:
+    cmd = runs.papermill_command(
+        Path("notebooks/a.ipynb"), Path("/out/a.ipynb"), ["-p", "seed", "1"], python="/env/bin/py"
+    )
+    assert cmd == [
+        "/env/bin/papermill",
+        "-k",
+        "python3",
+        "--cwd",
+        "notebooks",
+        "--no-progress-bar",
+        "notebooks/a.ipynb",
+        "/out/a.ipynb",
+        "-p",
+        "seed",
+        "1",
+    ]
+
+
+def test_every_papermill_parameter_form_is_read(tmp_path: Path) -> None:
+    params_file = tmp_path / "p.yaml"
+    params_file.write_text("n_per_leg: 9\nseed: 3\n")
+    args = [
+        *("-p", "sigma", "-1e-3"),  # a negative value is a value, not an option
+        *("-k", "python3"),  # other papermill options are passed over
+        *("-r", "seed", "7"),
+        *("-y", "sweep_amplitudes: [0.1, 1.0]\nseed: 1"),
+        "--parameters_yaml=sigma: 0.5",
+        *("-psigm", "2"),  # click's short option with its first value attached
+        *("-f", str(params_file)),
+        *("--parameters_base64", base64.b64encode(b"colour: red").decode()),
+        *("--parameters", "n_per_leg", "4"),
+    ]
+    assert runs.given_parameters(args) == [
+        "sigma",
+        "seed",
+        "sweep_amplitudes",
+        "seed",
+        "sigma",
+        "sigm",
+        "n_per_leg",
+        "seed",
+        "colour",
+        "n_per_leg",
+    ]
+    assert runs.given_parameters(["-y", ""]) == []
+
+
+def test_malformed_parameter_arguments_are_refused(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=r"-p needs a name and a value, got \['-p', 'sigma'\]"):
+        runs.given_parameters(["-p", "sigma"])
+    with pytest.raises(ValueError, match="-y must give a YAML mapping of parameter names"):
+        runs.given_parameters(["-y", "[1, 2]"])
+    with pytest.raises(ValueError, match=r"-y must give a YAML mapping, got 'a: \[1' \(expected"):
+        runs.given_parameters(["-y", "a: [1"])
+    with pytest.raises(ValueError, match="cannot read the file"):
+        runs.given_parameters(["-f", str(tmp_path / "missing.yaml")])
+    with pytest.raises(ValueError, match="-b must be base64-encoded YAML"):
+        runs.given_parameters(["-b", "not base64!"])
+
+
+def test_unknown_parameter_names_are_refused_by_name() -> None:
+    given = runs.check_parameter_names(["-p", "sigma", "1e-3", "-y", "seed: 2"], ALLOWED)
+    assert given == ["sigma", "seed"]
+    with pytest.raises(ValueError) as info:
+        runs.check_parameter_names(["-p", "sigm", "1e-3", "-y", "colour: 1"], ALLOWED, "nb.ipynb")
+    assert str(info.value) == (
+        "unknown parameter 'sigm' (did you mean 'sigma'?), 'colour' for nb.ipynb: its parameters "
+        "cell defines seed, sigma, n_per_leg, sweep_amplitudes"
+    )
+
+
+def test_notebook_parameters_are_the_parameters_cell_assignments(tmp_path: Path) -> None:
+    nb = _notebook(
+        tmp_path / "a.ipynb",
+        [
+            {"cell_type": "markdown", "metadata": {}, "source": ["x = 1"]},
+            _parameters_cell(
+                [
+                    "# a comment = with an equals sign\n",
+                    "seed = 2010  # a = b in the comment\n",
+                    "sigma: float = 1e-4\n",
+                    "a, b = 1, 2\n",
+                    "shape = {\n",
+                    "    'r': 1.0,\n",
+                    "}\n",
+                ]
+            ),
+            {"cell_type": "code", "metadata": {}, "source": "later = 3"},
+        ],
+    )
+    assert runs.notebook_parameters(nb) == ["seed", "sigma", "a", "b", "shape"]
+    assert runs.notebook_parameters(_notebook(tmp_path / "none.ipynb", [])) == []
+    bad = _notebook(tmp_path / "bad.ipynb", [_parameters_cell(["x = (\n"])])
+    with pytest.raises(ValueError, match=r"the parameters cell of .*bad\.ipynb is not Python"):
+        runs.notebook_parameters(bad)
+
+
+def test_a_parameter_papermill_cannot_see_is_still_a_parameter() -> None:
+    # the line of tab_half_width holds a second "=" in its comment: papermill's inspection
+    # skips it (and would warn "Passed unknown parameter"), the parameters cell defines it
+    names = runs.notebook_parameters(REPO_ROOT / "notebooks" / "hexflex_model.ipynb")
+    assert "tab_half_width" in names and "stage_radius" in names
+
+
+def test_the_failure_line_is_the_error_that_stopped_the_notebook() -> None:
+    executed = {
+        "cells": [
+            {"cell_type": "markdown", "source": "An Exception was encountered"},
+            {
+                "cell_type": "code",
+                "execution_count": 2,
+                "outputs": [
+                    {"output_type": "stream", "name": "stdout", "text": "hello"},
+                    {"output_type": "error", "ename": "SystemExit", "evalue": "0"},
+                ],
+            },
+            {
+                "cell_type": "code",
+                "execution_count": 3,
+                "outputs": [
+                    {
+                        "output_type": "error",
+                        "ename": "ValueError",
+                        "evalue": "sigma must be >= 0, got -0.001",
+                        "traceback": ["\x1b[0;31mValueError\x1b[0m long traceback"],
+                    }
+                ],
+            },
+        ]
+    }
+    assert runs.failure_message(executed) == (
+        "ValueError: sigma must be >= 0, got -0.001 (cell In [3])"
+    )
+    executed["cells"][2]["outputs"][0]["evalue"] = "first line\n  second line"
+    assert runs.failure_message(executed) == "ValueError: first line second line (cell In [3])"
+    assert runs.failure_message({"cells": executed["cells"][:2]}) is None
+
+
+def test_relay_holds_back_the_traceback() -> None:
+    lines = ["Input Notebook: a\n", "Traceback (most recent call last):\n", '  File "x"\n', "E\n"]
+    shown: list[str] = []
+    held = runs.relay(lines, shown.append)
+    assert shown == lines[:1] and held == lines[1:]
+
+
+def test_a_misspelled_parameter_stops_make_run_before_anything_runs(tmp_path: Path, capsys) -> None:
+    nb = _notebook(tmp_path / "nb.ipynb", [_parameters_cell(["sigma = 1e-4\n"])])
+    argv = ["--notebook", str(nb), "--out", str(tmp_path / "runs"), "--", "-p", "sigm", "1e-3"]
+    assert runs.main(argv) == 2
+    err = capsys.readouterr().err
+    assert "refused, nothing was run: unknown parameter 'sigm' (did you mean 'sigma'?)" in err
+    assert "defines sigma" in err
+    assert not (tmp_path / "runs").exists()
