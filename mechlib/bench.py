@@ -9,6 +9,13 @@
   all 1042.
 - SuperLU ordering on the same stiffness: the minimum-degree ordering of A + Aᵀ with symmetric
   pivoting that the model uses, against SciPy's default column ordering (COLAMD).
+- The non-linear solve (issue 18's options), on the first validation runs of the DOE chapter's
+  model: Newton with SfePy's tangent (the solver before), Newton with the batched-BLAS tangent
+  (:mod:`mechlib.hexflex.svk_tangent`) and modified Newton (the default), each timed on the same
+  runs, with the largest relative pose difference to the first; the cost of one tangent
+  (SfePy's, batched), one factorisation, one residual and one back-substitution; and the
+  Newton–Krylov alternative: GMRES iterations, preconditioned by the factorised linear
+  stiffness, to cut the true residual of one Newton correction 100×, at the linear solution.
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on a two-process pool, and projected to the CI and full profiles' run
@@ -39,6 +46,11 @@ N_PLAIN_TIMED = 3
 #: Non-linear validation runs timed in-process, and on the two-process pool.
 N_NONLINEAR_SERIAL = 2
 N_NONLINEAR_POOL = 4
+#: Runs on which the non-linear solvers are compared (the old one costs ≈ 45 s a run).
+N_SOLVER_RUNS = 3
+#: Right-preconditioned GMRES: iterations allowed, and the residual reduction asked for.
+KRYLOV_MAXITER = 60
+KRYLOV_RTOL = 1e-2
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -119,6 +131,76 @@ def factorisation_orderings() -> dict[str, float]:
         "speedup": (t2 - t1) / (t1 - t0),
         "fill_ratio": (default.L.nnz + default.U.nnz) / (ours.L.nnz + ours.U.nnz),
     }
+
+
+def nonlinear_options() -> dict[str, float]:
+    """Time the non-linear solvers on the same validation runs, and their building blocks."""
+    import scipy.sparse.linalg as sla
+
+    from mechlib.hexflex.model import factorise
+    from mechlib.hexflex.nonlinear import NonlinearSolver
+
+    spec, _ = _chapter_spec()
+    model = spec.build()
+    runs = np.random.default_rng(2010).uniform(-1.0, 1.0, (N_SOLVER_RUNS, 6))
+    variants = {
+        "newton_sfepy": (NonlinearSolver(model, tangent="sfepy"), "newton"),
+        "newton_batched": (NonlinearSolver(model), "newton"),
+        "modified": (NonlinearSolver(model), "modified"),
+    }
+    out: dict[str, float] = {"n_dofs": model.n_dofs, "runs": N_SOLVER_RUNS}
+    poses = {}
+    for name, (solver, method) in variants.items():
+        t0 = time.perf_counter()
+        sols = [solver.solve(f, method=method) for f in runs]
+        out[f"{name}_per_run_s"] = (time.perf_counter() - t0) / N_SOLVER_RUNS
+        out[f"{name}_factorisations"] = float(np.mean([sum(s.factorisations) for _, s in sols]))
+        out[f"{name}_corrections"] = float(np.mean([sum(s.iterations) for _, s in sols]))
+        poses[name] = np.array([model.pose_of(u) for u, _ in sols])
+    ref = poses["newton_sfepy"]
+    for name in variants:
+        out[f"{name}_pose_rel_diff"] = float(np.abs(poses[name] - ref).max() / np.abs(ref).max())
+        out[f"{name}_speedup"] = out["newton_sfepy_per_run_s"] / out[f"{name}_per_run_s"]
+    # building blocks at the linear solution of the first run
+    solver = variants["modified"][0]
+    load = model.load_vectors() @ runs[0]
+    u = model.back_substitute(load)
+    t0 = time.perf_counter()
+    res = solver.evaluator.eval_residual(u).copy() - load
+    t1 = time.perf_counter()
+    sfepy_tangent = solver.evaluator.eval_tangent_matrix(u).copy()
+    t2 = time.perf_counter()
+    tangent = solver._batched.matrix(u)
+    t3 = time.perf_counter()
+    factorise(tangent)
+    t4 = time.perf_counter()
+    model.back_substitute(res)
+    t5 = time.perf_counter()
+    out.update(
+        residual_s=t1 - t0,
+        sfepy_tangent_s=t2 - t1,
+        batched_tangent_s=t3 - t2,
+        factorisation_s=t4 - t3,
+        back_substitution_s=t5 - t4,
+        tangent_rel_diff=float(abs(sfepy_tangent - tangent).max() / abs(tangent).max()),
+    )
+    # Newton–Krylov: the Newton correction by GMRES on the tangent, preconditioned by K_lin
+    n = model.n_dofs
+    operator = sla.LinearOperator((n, n), matvec=lambda v: tangent @ model.back_substitute(v))
+    count = [0]
+    t0 = time.perf_counter()
+    sla.gmres(
+        operator,
+        res,
+        rtol=KRYLOV_RTOL,
+        restart=KRYLOV_MAXITER,
+        maxiter=1,
+        callback=lambda _: count.__setitem__(0, count[0] + 1),
+        callback_type="pr_norm",
+    )
+    out["krylov_iterations"] = count[0]
+    out["krylov_s"] = time.perf_counter() - t0
+    return out
 
 
 def _chapter_spec():
@@ -237,6 +319,32 @@ def main() -> int:
     print(f"  minimum degree on A + A^T, symmetric mode: {lu['ours_s']:.2f} s")
     print(f"  SciPy default (COLAMD):                    {lu['default_s']:.2f} s")
     print(f"  speed-up: {lu['speedup']:.1f}x; fill ratio default/ours: {lu['fill_ratio']:.1f}")
+    nl = nonlinear_options()
+    print(f"Non-linear solve, {nl['n_dofs']} DOFs, mean of the first {nl['runs']} validation runs:")
+    for name, label in (
+        ("newton_sfepy", "Newton, SfePy's tangent (before)"),
+        ("newton_batched", "Newton, batched-BLAS tangent"),
+        ("modified", "modified Newton + Anderson (now)"),
+    ):
+        print(
+            f"  {label:34s} {nl[f'{name}_per_run_s']:5.1f} s/run, "
+            f"{nl[f'{name}_factorisations']:.1f} factorisations, "
+            f"{nl[f'{name}_corrections']:.1f} corrections; speed-up "
+            f"{nl[f'{name}_speedup']:.1f}x; pose vs before {nl[f'{name}_pose_rel_diff']:.1e}"
+        )
+    print(
+        f"  one residual {nl['residual_s']:.2f} s, back-substitution "
+        f"{nl['back_substitution_s']:.2f} s, factorisation {nl['factorisation_s']:.2f} s; "
+        f"tangent: SfePy "
+        f"{nl['sfepy_tangent_s']:.2f} s, batched {nl['batched_tangent_s']:.2f} s "
+        f"({nl['sfepy_tangent_s'] / nl['batched_tangent_s']:.1f}x, max rel diff "
+        f"{nl['tangent_rel_diff']:.0e})"
+    )
+    print(
+        f"  Newton-Krylov at the linear solution: GMRES preconditioned by K_lin took "
+        f"{nl['krylov_iterations']} iterations (limit {KRYLOV_MAXITER}, "
+        f"{nl['krylov_s']:.1f} s) to cut one correction's residual {1 / KRYLOV_RTOL:.0f}x"
+    )
     ch = chapter_timings()
     print(f"DOE chapter FE work, cold, {ch['geometry']} geometry, {ch['n_dofs']} DOFs:")
     print(f"  model build (mesh, assembly, factorisation): {ch['build_s']:.1f} s")

@@ -95,12 +95,38 @@ class InProcessExecutor(cf.Executor):
 
 
 class ExperimentError(RuntimeError):
-    """An experiment failed; ``completed`` maps run index → pose (6,) of every finished run."""
+    """Experiments failed.
 
-    def __init__(self, message: str, failed: list[int], completed: dict[int, np.ndarray]):
+    ``failed`` lists the run indices without a result; ``completed`` maps run index → pose (6,)
+    of every finished run; ``reasons`` maps each failed index to its task's error message and
+    ``residuals`` to the last relative residual of a non-linear run that did not converge
+    (``nan`` when the error carries none).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        failed: list[int],
+        completed: dict[int, np.ndarray],
+        reasons: dict[int, str] | None = None,
+        residuals: dict[int, float] | None = None,
+    ):
         super().__init__(message)
         self.failed = failed
         self.completed = completed
+        self.reasons = reasons or {}
+        self.residuals = residuals or {}
+
+
+@dataclass(frozen=True)
+class FailedRun:
+    """One experiment without a result: its index in the design, forces [N], the last relative
+    residual of the non-linear solve (``nan`` if unknown) and the error message."""
+
+    index: int
+    forces: tuple[float, ...]
+    residual: float
+    reason: str
 
 
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
@@ -205,6 +231,7 @@ def run_experiments(
         from tqdm.auto import tqdm
 
         bar = tqdm(total=len(pending), desc=f"{kind} FE experiments", unit="task")
+    pending_rows = {int(rows[0]): rows for rows in pending.values()}
     for fut in cf.as_completed(pending):
         rows = pending[fut]
         try:
@@ -223,13 +250,54 @@ def run_experiments(
         failed.sort(key=lambda p: p[0])
         first, err = failed[0]
         lost = [int(i) for i in np.flatnonzero(~done)]
+        reasons: dict[int, str] = {}
+        residuals: dict[int, float] = {}
+        for start, error in failed:
+            rows = pending_rows[start]
+            for i in rows:
+                reasons[int(i)] = str(error)
+                residuals[int(i)] = float(getattr(error, "residual", np.nan))
         raise ExperimentError(
             f"{len(lost)} of {len(d)} experiments failed (first: run {first}, forces "
             f"{d[first].tolist()} N: {err}); {int(done.sum())} completed results are kept",
             failed=lost,
             completed={int(i): out[i].copy() for i in np.flatnonzero(done)},
+            reasons=reasons,
+            residuals=residuals,
         )
     return out
+
+
+def run_keeping_failures(
+    spec: ModelSpec, design: object, **kwargs
+) -> tuple[np.ndarray, np.ndarray, list[FailedRun]]:
+    """:func:`run_experiments` for statistics that must leave failed runs out, and say so.
+
+    Parameters
+    ----------
+    spec, design, **kwargs
+        As for :func:`run_experiments`.
+
+    Returns
+    -------
+    index : ndarray (m,) of int
+        Rows of ``design`` that have a result, increasing.
+    poses : ndarray (m, 6)
+        Their poses [µm, µrad].
+    failures : list of FailedRun
+        The other rows, by index, with their forces, last residual and error.
+    """
+    d = check_forces_design(design)
+    try:
+        return np.arange(len(d)), run_experiments(spec, d, **kwargs), []
+    except ExperimentError as err:
+        index = np.array(sorted(err.completed), dtype=int)
+        poses = np.array([err.completed[i] for i in index], dtype=float).reshape(-1, 6)
+        failures = [
+            FailedRun(i, tuple(d[i].tolist()), err.residuals.get(i, np.nan), err.reasons.get(i, ""))
+            for i in err.failed
+        ]
+        return index, poses, failures
 
 
 def linearity_sweep(
@@ -253,7 +321,8 @@ def linearity_sweep(
     dict
         ``amplitude`` (m,), ``linear`` and ``nonlinear`` poses (m, 6), ``rel_pct`` (m, 6) the
         pointwise relative error 100 |ψ_nl − ψ_lin| / |ψ_nl| of the linear model per component,
-        and ``iterations`` (m,) the Newton iterations spent.
+        ``iterations`` (m,) the corrections (back-substitutions) and ``factorisations`` (m,) the
+        tangent factorisations spent.
     """
     d = check_matrix("direction", np.atleast_2d(np.asarray(direction, dtype=float)), shape=(1, 6))[
         0
@@ -267,15 +336,17 @@ def linearity_sweep(
     steps = check_int("steps", steps, low=1, high=100)
     lin = model.poses(amps[:, None] * d)
     nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
+    facts = np.zeros(len(amps), dtype=int)
     for i, a in enumerate(amps):
-        nonlin[i], used = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
-        iters[i] = sum(used)
+        nonlin[i], stats = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
+        iters[i], facts[i] = sum(stats.iterations), sum(stats.factorisations)
     return {
         "amplitude": amps,
         "linear": lin,
         "nonlinear": nonlin,
         "rel_pct": 100 * np.abs(nonlin - lin) / np.abs(nonlin),
         "iterations": iters,
+        "factorisations": facts,
     }
 
 

@@ -155,15 +155,15 @@ class HexFlexModel:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
         return self.pose_of(self.solve_reduced(forces)).T
 
-    def poses_nonlinear(self, forces: object, steps: int = 1) -> tuple[np.ndarray, list[int]]:
-        """Pose (6,) of the geometrically non-linear solution and the Newton iterations per load
-        step (see :func:`mechlib.hexflex.nonlinear.solve`)."""
+    def poses_nonlinear(self, forces: object, steps: int = 1, method: str = "modified"):
+        """Pose (6,) of the geometrically non-linear solution and what the solve spent
+        (:class:`mechlib.hexflex.nonlinear.SolveStats`; see ``NonlinearSolver.solve``)."""
         from mechlib.hexflex import nonlinear
 
         if self._nonlinear is None:
             self._nonlinear = nonlinear.NonlinearSolver(self)
-        u, iterations = self._nonlinear.solve(forces, steps=steps)
-        return self.pose_of(u), iterations
+        u, stats = self._nonlinear.solve(forces, steps=steps, method=method)
+        return self.pose_of(u), stats
 
     def poses_plain_sfepy(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) by SfePy's own ``Problem.solve()``, one full solve per load case.
