@@ -189,3 +189,24 @@ def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch)
     monkeypatch.setattr(ex, "_task", lambda spec, kind, forces, steps: 2.0 * forces)
     index, poses, failures = ex.run_keeping_failures(SPEC, d, kind="nonlinear", progress=False)
     assert index.tolist() == list(range(20)) and failures == []
+
+
+def _blas_threads() -> int:
+    from threadpoolctl import threadpool_info
+
+    return max(i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas")
+
+
+def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -> None:
+    import os
+
+    with ex.worker_pool(2) as pool:
+        assert pool.submit(_blas_threads).result() == max(1, (os.cpu_count() or 1) // 2)
+        spec = ex.ModelSpec(SMALL, mesh_size=1.0)  # Q2: the non-linear solve
+        d = 3.0 * _design(2)
+        pooled = ex.run_experiments(spec, d, kind="nonlinear", executor=pool, progress=False)
+    here = ex.run_experiments(spec, d, kind="nonlinear", progress=False)
+    # BLAS thread counts differ (one per worker here): equal to the solver's tolerance, not bits
+    np.testing.assert_allclose(pooled, here, rtol=1e-8)
+    with pytest.raises(ValueError, match="workers must be"):
+        ex.worker_pool(0)

@@ -74,6 +74,31 @@ def model_for(spec: ModelSpec) -> HexFlexModel:
     return spec.build()
 
 
+def _limit_blas(threads: int) -> None:
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=threads, user_api="blas")  # for the life of the worker
+
+
+def worker_pool(workers: int) -> cf.ProcessPoolExecutor:
+    """A process pool for FE experiments whose workers share the cores' BLAS threads.
+
+    Each worker's BLAS (SuperLU's factorisations run through it) gets ``cores // workers``
+    threads, at least one, instead of every core: ``workers`` processes that each start a
+    thread per core oversubscribe the machine.
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes, 1 .. 64.
+    """
+    import os
+
+    workers = check_int("workers", workers, low=1, high=64)
+    threads = max(1, (os.cpu_count() or 1) // workers)
+    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_limit_blas, initargs=(threads,))
+
+
 class InProcessExecutor(cf.Executor):
     """Runs each submitted call at once in the calling thread (the default executor)."""
 
