@@ -24,7 +24,13 @@ from pathlib import Path
 import numpy as np
 
 from mechlib.hexflex.geometry import HexFlexGeometry
-from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_FORCE_N, HexFlexModel
+from mechlib.hexflex.model import (
+    AL7075_POISSON,
+    AL7075_YOUNG_MPA,
+    MAX_FORCE_N,
+    HexFlexModel,
+    check_forces,
+)
 from mechlib.params import check_choice, check_increasing, check_int, check_matrix
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
@@ -189,13 +195,7 @@ def check_forces_design(design: object) -> np.ndarray:
             f"design must have 6 factor columns (T1D1 … T3D2) and one row per run, got shape "
             f"{d.shape}"
         )
-    d = check_matrix("design [N]", d, shape=(None, 6))
-    worst = float(np.abs(d).max(initial=0.0))
-    if worst > MAX_FORCE_N:
-        raise ValueError(
-            f"design [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}], got {worst:g}"
-        )
-    return d
+    return check_forces("design [N]", d)
 
 
 def run_experiments(

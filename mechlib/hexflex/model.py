@@ -114,14 +114,7 @@ class HexFlexModel:
     def check_forces(self, forces: object) -> np.ndarray:
         """Actuator forces as an (n, 6) array [N], each within ``±MAX_FORCE_N``."""
         f = np.asarray(forces, dtype=float)
-        f = check_matrix("forces [N]", f[None, :] if f.ndim == 1 else f, shape=(None, 6))
-        worst = np.abs(f).max(initial=0.0)
-        if worst > MAX_FORCE_N:
-            raise ValueError(
-                f"forces [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}] N, "
-                f"got |force| = {worst:g}"
-            )
-        return f
+        return check_forces("forces [N]", f[None, :] if f.ndim == 1 else f)
 
     def assembled_stiffness(self):
         """The reduced stiffness matrix (free DOFs, SciPy sparse) [N/mm]."""
@@ -239,6 +232,18 @@ class HexFlexModel:
         n = len(self.planar.nodes)
         vert = full[: len(self.fe.coors), :3]
         return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def check_forces(name: str, forces: object) -> np.ndarray:
+    """Actuator forces ``name`` as an (n, 6) array of finite values within ``±MAX_FORCE_N`` [N]
+    (the one force bound of the FE models and the experiment runner)."""
+    f = check_matrix(name, forces, shape=(None, 6))
+    worst = float(np.abs(f).max(initial=0.0))
+    if worst > MAX_FORCE_N:
+        raise ValueError(
+            f"{name} must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}], got |force| = {worst:g}"
+        )
+    return f
 
 
 def coarsening_for(coarse_widths: float, fraction: float) -> float:
