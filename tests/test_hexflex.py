@@ -298,6 +298,17 @@ def test_the_consistent_tangent_does_not_take_a_stale_stress() -> None:
     )
 
 
+def test_two_tl_evaluators_on_one_model_do_not_share_state() -> None:
+    model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
+    u = model.solve_reduced(np.array([[0.0, 0.0, 0.0, 3.0, -2.0, 0.0]]))[:, 0]
+    first = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    second = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    alone = first.eval_residual(u).copy()
+    second.eval_residual(2.0 * u)
+    np.testing.assert_array_equal(first.eval_residual(u), alone)
+    assert not np.any(second.eval_residual(np.zeros(model.n_dofs)))  # no load, no displacement
+
+
 def _tl_tangent_error(model: HexFlexModel, term: str) -> tuple[float, list[float]]:
     """Tangent at u = 0 against the linear stiffness, and the central-difference error of the
     tangent at a deformed state for two steps, for one TL term on the model's field."""

@@ -79,7 +79,7 @@ def tl_evaluator(model: HexFlexModel, term: str):
     term : str
         SfePy term name, e.g. ``"dw_tl_he_svk"`` (the stock term) or the consistent one.
     """
-    from sfepy.discrete import Equation, Equations, Material, Problem
+    from sfepy.discrete import Equation, Equations, FieldVariable, Material, Problem
     from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
     from sfepy.terms import Term
 
@@ -87,7 +87,11 @@ def tl_evaluator(model: HexFlexModel, term: str):
         raise ValueError(f"element must be 'q2' for a TL term, got {model.element!r}")
     p = model.fe
     mat = Material("s", D=stiffness_from_youngpoisson(3, model.young, model.poisson))
-    t = Term.new(f"{term}(s.D, v, u)", fe.integral(), p.omega, s=mat, v=p.v, u=p.u)
+    # variables of its own: SfePy caches the TL family data (F, E, ...) on the variable, and an
+    # evaluator sharing it with another one was measured returning the other's residual
+    u = FieldVariable("u", "unknown", p.field)
+    v = FieldVariable("v", "test", p.field, primary_var_name="u")
+    t = Term.new(f"{term}(s.D, v, u)", fe.integral(), p.omega, s=mat, v=v, u=u)
     pb = Problem("hexflex_tl", equations=Equations([Equation("balance", t)]))
     pb.set_bcs(ebcs=p.pb.ebcs)
     pb.time_update(create_matrix=True)
