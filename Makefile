@@ -95,7 +95,8 @@ check-browser: $(STAMP)
 
 test: $(STAMP)
 	@test "$(PROFILE)" = ci || { echo "make test runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
-	$(VENV)/bin/ruff check mechlib tests
+	$(VENV)/bin/ruff check mechlib tests notebooks
+	$(VENV)/bin/ruff format --check mechlib tests notebooks
 	$(MAKE) --no-print-directory unit
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory book
@@ -119,8 +120,8 @@ bench: $(STAMP)
 	$(PY) -m mechlib.bench
 
 lint: $(STAMP)
-	$(VENV)/bin/ruff check mechlib tests
-	$(VENV)/bin/ruff format --check mechlib tests
+	$(VENV)/bin/ruff check mechlib tests notebooks
+	$(VENV)/bin/ruff format --check mechlib tests notebooks
 
 clean:
 	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md

@@ -149,6 +149,14 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
 
 
+def test_crossing_labels_say_above_below_or_where() -> None:
+    lin = {
+        "crossing": np.array([np.inf, 0.1, 0.456]),
+        "below_sweep": np.array([False, True, False]),
+    }
+    assert ex.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
+
+
 def test_linear_range_refuses_bad_input_by_name() -> None:
     err = np.ones((2, 6))
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2 strictly incr"):

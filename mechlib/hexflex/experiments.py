@@ -419,3 +419,17 @@ def linear_range(amplitude: object, rel_pct: object, level: float = 1.0) -> dict
             step = (np.log(level) - log_e[i - 1, j]) / exponent[i - 1, j]
             crossing[j] = np.exp(log_a[i - 1] + step)
     return {"exponent": exponent, "crossing": crossing, "below_sweep": below}
+
+
+def crossing_labels(lin_range: dict[str, np.ndarray], amplitude: object) -> list[str]:
+    """Table labels of :func:`linear_range`'s crossings: ``"> a_max"`` where a component stays
+    below the budget over the sweep, ``"≤ a_min"`` where it is already above it at the smallest
+    amplitude, else the interpolated amplitude [N] to two significant digits."""
+    a = check_increasing("amplitude [N]", amplitude, low=0.0, low_open=True)
+    labels = []
+    for cross, below in zip(lin_range["crossing"], lin_range["below_sweep"], strict=True):
+        if np.isinf(cross):
+            labels.append(f"> {a[-1]:g}")
+        else:
+            labels.append(f"≤ {cross:g}" if below else f"{cross:.2g}")
+    return labels

@@ -11,7 +11,9 @@ solve lives in :mod:`mechlib.hexflex.nonlinear`, the mesh study in
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import scipy.sparse.linalg as sla
@@ -232,6 +234,20 @@ class HexFlexModel:
         n = len(self.planar.nodes)
         vert = full[: len(self.fe.coors), :3]
         return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def model_maker(
+    *, young: float, poisson: float, element: str, mesh_fraction: float
+) -> Callable[..., HexFlexModel]:
+    """``make(g, **kwargs) -> HexFlexModel`` with these settings and flexure elements
+    ``mesh_fraction`` of ``g``'s narrowest width (one model recipe for a whole study)."""
+    return partial(
+        _make_model, young=young, poisson=poisson, element=element, mesh_fraction=mesh_fraction
+    )
+
+
+def _make_model(g: geo.HexFlexGeometry, *, mesh_fraction: float, **kwargs) -> HexFlexModel:
+    return HexFlexModel(g, mesh_size=mesh_fraction * g.narrowest, **kwargs)
 
 
 def check_forces(name: str, forces: object) -> np.ndarray:
