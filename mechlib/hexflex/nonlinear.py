@@ -3,9 +3,13 @@
 The material is the linear model's own elasticity tensor between Green–Lagrange strain and second
 Piola–Kirchhoff stress — large displacements and rotations with a linear-elastic material, which
 is what a "geometrically non-linear" analysis of a metal flexure means. The actuator loads are
-dead loads (fixed direction) on the tabs' external edges, as in the linear model. Newton's
-method runs over equal load steps; the first iteration from the undeformed state reuses the
-linear factorisation (the tangent at u = 0 *is* the linear stiffness). Q2 solid only.
+dead loads (fixed direction) on the tabs' external edges, as in the linear model. The solve runs
+over equal load steps; the first correction from the undeformed state reuses the linear
+factorisation (the tangent at u = 0 *is* the linear stiffness). By default it is a modified Newton
+method: a factorised tangent is kept while its (Anderson-accelerated) corrections converge fast
+enough, and refactorised when they slow down — 3 factorisations per validation run on the
+identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
+is assembled by :mod:`mechlib.hexflex.svk_tangent`. Q2 solid only.
 
 SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
 tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
@@ -101,7 +105,17 @@ def tl_evaluator(model: HexFlexModel, term: str):
 
 
 class NonlinearSolver:
-    """Newton solver of the TL Saint Venant–Kirchhoff HexFlex for one linear model."""
+    """Newton solver of the TL Saint Venant–Kirchhoff HexFlex for one linear model.
+
+    Parameters
+    ----------
+    model : HexFlexModel
+        A Q2 model with ``body_factor`` 1 (its factorised stiffness is the first tangent).
+    tangent : {"batched", "sfepy"}
+        How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
+        built here, ≈ 0.8 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
+        same matrix to round-off (``make bench`` compares them).
+    """
 
     def __init__(self, model: HexFlexModel, tangent: str = "batched") -> None:
         if model.element != "q2":
@@ -117,7 +131,7 @@ class NonlinearSolver:
         self.model = model
         self.evaluator = tl_evaluator(model, register_svk_term())
         self.tangent = check_choice("tangent", tangent, TANGENTS)
-        self._batched: SVKTangent | None = None
+        self._batched = SVKTangent(model) if self.tangent == "batched" else None
 
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
         """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""
@@ -133,8 +147,6 @@ class NonlinearSolver:
             return self.model.back_substitute
         if self.tangent == "sfepy":
             return factorise(self.evaluator.eval_tangent_matrix(u).copy()).solve
-        if self._batched is None:
-            self._batched = SVKTangent(self.model)
         return factorise(self._batched.matrix(u)).solve
 
     def solve(
