@@ -82,7 +82,8 @@ def check_rank(c: object, names: tuple[str, ...] = PARAM_NAMES) -> None:
 
 @dataclass(frozen=True)
 class LegFit:
-    """Result of identifying one leg."""
+    """Result of an identification: one leg's parameters, or both legs' stacked
+    (:func:`identify_traditional`)."""
 
     phi: np.ndarray
     iterations: int

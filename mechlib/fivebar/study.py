@@ -228,7 +228,8 @@ def sensitivity(
     -------
     list of dict
         One row per (sigma, n): ``sigma``, ``n_per_leg``, ``rms_dc_um``, ``rms_trad_um`` (mean
-        workspace RMS), ``share_dc_better`` and ``p_value`` (:func:`paired_verdict`).
+        workspace RMS), ``share_dc_better`` and ``p_value`` (:func:`paired_verdict`), and
+        ``failed_trials``, the trials left out because a fit did not converge.
     """
     rows = []
     for n in counts:
@@ -245,6 +246,7 @@ def sensitivity(
                     "rms_trad_um": 1e6 * float(mc["rms_trad"].mean()),
                     "share_dc_better": verdict["share_a_better"],
                     "p_value": verdict["p_value"],
+                    "failed_trials": len(mc["failed"]),
                 }
             )
     return rows
