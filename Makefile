@@ -34,7 +34,7 @@ help:
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
-	@echo "make bench       speed benchmarks (ratios measured in one run)"
+	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
 	@echo "make lock        regenerate environment.lock from requirements.in"
 
 # --- environment ------------------------------------------------------------------------------
@@ -95,7 +95,8 @@ check-browser: $(STAMP)
 
 test: $(STAMP)
 	@test "$(PROFILE)" = ci || { echo "make test runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
-	$(VENV)/bin/ruff check mechlib tests
+	$(VENV)/bin/ruff check mechlib tests notebooks
+	$(VENV)/bin/ruff format --check mechlib tests notebooks
 	$(MAKE) --no-print-directory unit
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory book
@@ -116,11 +117,11 @@ references: $(EXECUTED)
 	$(PY) -m mechlib.records update --records $(BUILD)/records --references tests/references
 
 bench: $(STAMP)
-	$(PY) -m mechlib.bench
+	$(PY) -m mechlib.bench $(if $(ONLY),--only $(ONLY))
 
 lint: $(STAMP)
-	$(VENV)/bin/ruff check mechlib tests
-	$(VENV)/bin/ruff format --check mechlib tests
+	$(VENV)/bin/ruff check mechlib tests notebooks
+	$(VENV)/bin/ruff format --check mechlib tests notebooks
 
 clean:
 	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md

@@ -9,10 +9,18 @@
   all 1042.
 - SuperLU ordering on the same stiffness: the minimum-degree ordering of A + Aᵀ with symmetric
   pivoting that the model uses, against SciPy's default column ordering (COLAMD).
+- The non-linear solve (issue 18's options), on the first validation runs of the DOE chapter's
+  model: Newton with SfePy's tangent (the solver before), Newton with the batched-BLAS tangent
+  (:mod:`mechlib.hexflex.svk_tangent`) and modified Newton (the default), each timed on the same
+  runs, with the largest relative pose difference to the first; the cost of one tangent
+  (SfePy's, batched), one factorisation, one residual and one back-substitution; and the
+  Newton–Krylov alternative: GMRES iterations, preconditioned by the factorised linear
+  stiffness (a whole solve on the first run: Newton corrections, GMRES iterations, time).
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
-  per run in-process and on a two-process pool, and projected to the CI and full profiles' run
-  counts. The executed notebooks' own papermill durations are printed when a build holds them.
+  per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
+  projected to the CI and full profiles' run counts (both run on two workers). The executed
+  notebooks' own papermill durations are printed when a build holds them.
 """
 
 from __future__ import annotations
@@ -39,6 +47,13 @@ N_PLAIN_TIMED = 3
 #: Non-linear validation runs timed in-process, and on the two-process pool.
 N_NONLINEAR_SERIAL = 2
 N_NONLINEAR_POOL = 4
+#: Runs on which the non-linear solvers are compared (the old one costs ≈ 45 s a run).
+N_SOLVER_RUNS = 3
+#: Right-preconditioned GMRES: iterations allowed, and the residual reduction asked for.
+KRYLOV_MAXITER = 60
+KRYLOV_RTOL = 1e-3
+#: Newton corrections allowed to the Newton–Krylov solve.
+KRYLOV_NEWTON = 30
 REPO_ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -121,6 +136,127 @@ def factorisation_orderings() -> dict[str, float]:
     }
 
 
+def nonlinear_options() -> dict[str, float]:
+    """Time the non-linear solvers on the same validation runs, and their building blocks."""
+
+    from mechlib.hexflex.model import factorise
+    from mechlib.hexflex.nonlinear import NonlinearSolver
+
+    spec, _ = _chapter_spec()
+    model = spec.build()
+    runs = np.random.default_rng(2010).uniform(-1.0, 1.0, (N_SOLVER_RUNS, 6))
+    batched = NonlinearSolver(model)  # one batched tangent (≈ 0.5 GB) serves both methods
+    variants = {
+        "newton_sfepy": (NonlinearSolver(model, tangent="sfepy"), "newton"),
+        "newton_batched": (batched, "newton"),
+        "modified": (batched, "modified"),
+    }
+    out: dict[str, float] = {"n_dofs": model.n_dofs, "runs": N_SOLVER_RUNS}
+    poses = {}
+    for name, (solver, method) in variants.items():
+        t0 = time.perf_counter()
+        sols = [solver.solve(f, method=method) for f in runs]
+        out[f"{name}_per_run_s"] = (time.perf_counter() - t0) / N_SOLVER_RUNS
+        out[f"{name}_factorisations"] = float(np.mean([sum(s.factorisations) for _, s in sols]))
+        out[f"{name}_corrections"] = float(np.mean([sum(s.iterations) for _, s in sols]))
+        poses[name] = np.array([model.pose_of(u) for u, _ in sols])
+    ref = poses["newton_sfepy"]
+    for name in variants:
+        out[f"{name}_pose_rel_diff"] = float(np.abs(poses[name] - ref).max() / np.abs(ref).max())
+        out[f"{name}_speedup"] = out["newton_sfepy_per_run_s"] / out[f"{name}_per_run_s"]
+    # building blocks at the linear solution of the first run
+    solver = variants["modified"][0]
+    load = model.load_vectors() @ runs[0]
+    u = model.back_substitute(load)
+    t0 = time.perf_counter()
+    res = solver.evaluator.eval_residual(u).copy() - load
+    t1 = time.perf_counter()
+    sfepy_tangent = solver.evaluator.eval_tangent_matrix(u).copy()
+    t2 = time.perf_counter()
+    tangent = solver._batched.matrix(u)
+    t3 = time.perf_counter()
+    factorise(tangent)
+    t4 = time.perf_counter()
+    model.back_substitute(res)
+    t5 = time.perf_counter()
+    out.update(
+        residual_s=t1 - t0,
+        sfepy_tangent_s=t2 - t1,
+        batched_tangent_s=t3 - t2,
+        factorisation_s=t4 - t3,
+        back_substitution_s=t5 - t4,
+        tangent_rel_diff=float(abs(sfepy_tangent - tangent).max() / abs(tangent).max()),
+    )
+    # Newton–Krylov: every Newton correction by GMRES on the exact (batched) tangent, right-
+    # preconditioned by the factorised linear stiffness (no factorisation after the model's)
+    t0 = time.perf_counter()
+    nk = newton_krylov(solver, runs[0])
+    out["krylov_s"] = time.perf_counter() - t0
+    out.update({f"krylov_{k}": v for k, v in nk.items()})
+    ref_pose = poses["newton_sfepy"][0]
+    out["krylov_pose_rel_diff"] = float(
+        np.abs(model.pose_of(nk["u"]) - ref_pose).max() / np.abs(ref_pose).max()
+    )
+    del out["krylov_u"]
+    return out
+
+
+def newton_krylov(solver, forces: np.ndarray) -> dict:
+    """Newton's method whose corrections are solved by GMRES (restarted never, at most
+    ``KRYLOV_MAXITER`` iterations, to ``KRYLOV_RTOL`` of the true residual) on the exact tangent,
+    right-preconditioned by the model's factorised linear stiffness; at most
+    ``KRYLOV_NEWTON`` corrections. Returns ``u``, ``newton`` (corrections), ``gmres`` (total
+    GMRES iterations) and ``residual`` (final relative residual)."""
+    import scipy.sparse.linalg as sla
+
+    from mechlib.hexflex.nonlinear import NEWTON_TOL
+
+    model = solver.model
+    load = model.load_vectors() @ forces
+    scale = np.linalg.norm(load)
+    n = model.n_dofs
+    u = model.back_substitute(load)  # the first correction, from u = 0, is exact
+    res = solver._residual(u, load)
+    if res is None:
+        raise RuntimeError("the linear solution inverts an element: no Newton-Krylov start")
+    count, newton = [0], 1
+    while np.linalg.norm(res) > NEWTON_TOL * scale and newton < KRYLOV_NEWTON:
+        tangent = solver._batched.matrix(u)
+        operator = sla.LinearOperator(
+            (n, n), matvec=lambda v, k=tangent: k @ model.back_substitute(v)
+        )
+        y, _ = sla.gmres(
+            operator,
+            res,
+            rtol=KRYLOV_RTOL,
+            restart=KRYLOV_MAXITER,
+            maxiter=1,
+            callback=lambda _: count.__setitem__(0, count[0] + 1),
+            callback_type="pr_norm",
+        )
+        trial = u - model.back_substitute(y)
+        new = solver._residual(trial, load)
+        newton += 1
+        if new is None:
+            break  # an element inverted
+        u, res = trial, new
+    return {
+        "u": u,
+        "newton": newton,
+        "gmres": count[0],
+        "residual": float(np.linalg.norm(res) / scale),
+    }
+
+
+def _warm_worker(spec) -> int:
+    """Build a worker's model and non-linear solver (what its first run would pay)."""
+    from mechlib.hexflex.experiments import model_for
+
+    model = model_for(spec)
+    model.poses_nonlinear(np.zeros(6))  # builds the solver and its tangent; zero load: no solve
+    return model.n_dofs
+
+
 def _chapter_spec():
     """The FE model of the DOE chapter: the geometry the hexflex notebook identified when a build
     holds its record, else the bench geometry (the second item says which)."""
@@ -169,28 +305,37 @@ def chapter_timings() -> dict[str, float | str]:
     for design in (pub.TABLE2_DESIGN, pub.TABLE4_DESIGN, validation):
         ex.run_experiments(spec, design, executor=None, cache_dir=None, progress=False)
     t2 = time.perf_counter()
-    iterations = [model.poses_nonlinear(f)[1][0] for f in validation[:N_NONLINEAR_SERIAL]]
+    factorisations = [
+        sum(model.poses_nonlinear(f)[1].factorisations) for f in validation[:N_NONLINEAR_SERIAL]
+    ]
     t3 = time.perf_counter()
     with ProcessPoolExecutor(max_workers=2) as pool:
         ex.run_experiments(
             spec, validation[:N_NONLINEAR_POOL], kind="nonlinear", executor=pool, progress=False
         )
     t4 = time.perf_counter()
-    pool_per_run = (t4 - t3) / N_NONLINEAR_POOL
+    with ex.worker_pool(2) as pool:
+        # start-up first (each worker builds the model and its tangent once), then the runs
+        list(pool.map(_warm_worker, [spec, spec]))
+        t5 = time.perf_counter()
+        ex.run_experiments(
+            spec, validation[:N_NONLINEAR_POOL], kind="nonlinear", executor=pool, progress=False
+        )
+    t6 = time.perf_counter()
+    plain_pool_per_run = (t4 - t3) / N_NONLINEAR_POOL
+    startup = t5 - t4
+    pool_per_run = (t6 - t5) / N_NONLINEAR_POOL
     return {
         "geometry": source,
         "n_dofs": model.n_dofs,
         "build_s": t1 - t0,
         "linear_s": t2 - t1,
         "nonlinear_per_run_s": (t3 - t2) / N_NONLINEAR_SERIAL,
-        "newton_iterations": float(np.mean(iterations)),
+        "factorisations": float(np.mean(factorisations)),
+        "pool_startup_s": startup,
         "pool_per_run_s": pool_per_run,
-        **{
-            f"{name}_nonlinear_s": n * (t3 - t2) / N_NONLINEAR_SERIAL
-            if name == "ci"
-            else n * pool_per_run
-            for name, n in counts.items()
-        },
+        "plain_pool_per_run_s": plain_pool_per_run,
+        **{f"{name}_nonlinear_s": startup + n * pool_per_run for name, n in counts.items()},
         **{f"{name}_runs": n for name, n in counts.items()},
     }
 
@@ -207,13 +352,45 @@ def executed_durations() -> dict[str, dict[str, float]]:
     return out
 
 
-def main() -> int:
-    """Run the benchmarks and print their ratios."""
+SECTIONS: tuple[str, ...] = ("postures", "load-cases", "orderings", "nonlinear", "chapter")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmarks (all, or ``--only`` some sections) and print their ratios."""
+    import argparse
+
+    from mechlib.hexflex.nonlinear import NEWTON_TOL
+
+    parser = argparse.ArgumentParser(prog="python -m mechlib.bench", description=__doc__)
+    parser.add_argument(
+        "--only", default=",".join(SECTIONS), help=f"comma-separated sections of {SECTIONS}"
+    )
+    only = [x for x in parser.parse_args(argv).only.split(",") if x]
+    unknown = sorted(set(only) - set(SECTIONS))
+    if unknown:
+        parser.error(f"--only: unknown sections {unknown}; allowed: {', '.join(SECTIONS)}")
+    if "postures" in only:
+        _print_postures()
+    if "load-cases" in only:
+        _print_load_cases()
+    if "orderings" in only:
+        _print_orderings()
+    if "nonlinear" in only:
+        _print_nonlinear(NEWTON_TOL)
+    if "chapter" in only:
+        _print_chapter()
+    return 0
+
+
+def _print_postures() -> None:
     res = posture_selection()
     print(f"posture selection, {res['candidates']} candidates, {N_SELECT} postures (greedy phase):")
     print(f"  active (det + Woodbury updates): {res['active_s']:.3f} s")
     print(f"  reference (SVD per candidate):   {res['svd_s']:.3f} s")
     print(f"  speed-up: {res['speedup']:.0f}x; same selection: {bool(res['same_selection'])}")
+
+
+def _print_load_cases() -> None:
     hx = hexflex_load_cases()
     print(f"HexFlex, Q2, {hx['n_dofs']} DOFs, {N_LOAD_CASES} load cases:")
     print(
@@ -232,22 +409,63 @@ def main() -> int:
         f"  speed-up: {hx['speedup']:.0f}x; largest relative pose difference "
         f"{hx['max_rel_diff']:.1e}"
     )
+
+
+def _print_orderings() -> None:
     lu = factorisation_orderings()
     print(f"SuperLU on the same stiffness ({lu['n_dofs']} DOFs):")
     print(f"  minimum degree on A + A^T, symmetric mode: {lu['ours_s']:.2f} s")
     print(f"  SciPy default (COLAMD):                    {lu['default_s']:.2f} s")
     print(f"  speed-up: {lu['speedup']:.1f}x; fill ratio default/ours: {lu['fill_ratio']:.1f}")
+
+
+def _print_nonlinear(newton_tol: float) -> None:
+    nl = nonlinear_options()
+    print(f"Non-linear solve, {nl['n_dofs']} DOFs, mean of the first {nl['runs']} validation runs:")
+    for name, label in (
+        ("newton_sfepy", "Newton, SfePy's tangent (before)"),
+        ("newton_batched", "Newton, batched-BLAS tangent"),
+        ("modified", "modified Newton + Anderson (now)"),
+    ):
+        print(
+            f"  {label:34s} {nl[f'{name}_per_run_s']:5.1f} s/run, "
+            f"{nl[f'{name}_factorisations']:.1f} factorisations, "
+            f"{nl[f'{name}_corrections']:.1f} corrections; speed-up "
+            f"{nl[f'{name}_speedup']:.1f}x; pose vs before {nl[f'{name}_pose_rel_diff']:.1e}"
+        )
+    print(
+        f"  one residual {nl['residual_s']:.2f} s, back-substitution "
+        f"{nl['back_substitution_s']:.2f} s, factorisation {nl['factorisation_s']:.2f} s; "
+        f"tangent: SfePy "
+        f"{nl['sfepy_tangent_s']:.2f} s, batched {nl['batched_tangent_s']:.2f} s "
+        f"({nl['sfepy_tangent_s'] / nl['batched_tangent_s']:.1f}x, max rel diff "
+        f"{nl['tangent_rel_diff']:.0e})"
+    )
+    print(
+        f"  Newton-Krylov (GMRES on the exact tangent, preconditioned by K_lin, to "
+        f"{KRYLOV_RTOL:g}), first run: {nl['krylov_newton']} Newton corrections, "
+        f"{nl['krylov_gmres']} GMRES iterations, {nl['krylov_s']:.1f} s, final residual "
+        f"{nl['krylov_residual']:.1e} (tol {newton_tol:g}), pose vs before "
+        f"{nl['krylov_pose_rel_diff']:.1e}"
+    )
+
+
+def _print_chapter() -> None:
     ch = chapter_timings()
     print(f"DOE chapter FE work, cold, {ch['geometry']} geometry, {ch['n_dofs']} DOFs:")
     print(f"  model build (mesh, assembly, factorisation): {ch['build_s']:.1f} s")
     print(f"  linear part (Tables 2, 4 and 1000 validation runs): {ch['linear_s']:.1f} s")
     print(
         f"  non-linear run in-process: {ch['nonlinear_per_run_s']:.1f} s "
-        f"({ch['newton_iterations']:.0f} Newton iterations, mean of {N_NONLINEAR_SERIAL})"
+        f"({ch['factorisations']:.1f} tangent factorisations, mean of {N_NONLINEAR_SERIAL})"
     )
     print(
-        f"  {N_NONLINEAR_POOL} runs on 2 processes: {ch['pool_per_run_s']:.1f} s per run "
-        f"(wall, incl. the workers' model builds)"
+        f"  {N_NONLINEAR_POOL} runs on 2 processes, one BLAS thread per worker "
+        f"(experiments.worker_pool): start-up (each worker builds its non-linear solver; the "
+        f"model comes with the fork when this process holds it, else it is built too) "
+        f"{ch['pool_startup_s']:.1f} s, then {ch['pool_per_run_s']:.1f} s per run (wall); a plain "
+        f"pool, a BLAS thread per core in each worker: {ch['plain_pool_per_run_s']:.1f} s per run "
+        f"incl. start-up"
     )
     for name in ("ci", "full"):
         n = ch[f"{name}_runs"]
@@ -261,7 +479,6 @@ def main() -> int:
             f"  executed notebooks, profile {profile} (papermill, as built; a warm FE cache "
             f"shortens virtual_experiments): {listed}"
         )
-    return 0
 
 
 if __name__ == "__main__":

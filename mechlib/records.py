@@ -115,7 +115,9 @@ def load(path: Path) -> dict[str, Any]:
 
 def recorded_value(notebook: str, key: str) -> Any:
     """A value recorded by another notebook: from ``records_dir()`` (this build or run) if it
-    holds that notebook's record, else from the default build's ``build/records``.
+    holds that notebook's record, else from the default build's ``build/records`` — and then it
+    says so on stderr (a ``make run`` reads the default build's upstream record; a record of
+    another profile is never taken without a word).
 
     Raises
     ------
@@ -131,6 +133,12 @@ def recorded_value(notebook: str, key: str) -> Any:
         raise FileNotFoundError(
             f"no record of notebook {notebook!r} in {places[0].parent} or {places[1].parent}: "
             f"execute it first (make notebooks)"
+        )
+    if path != places[0]:
+        print(
+            f"note: {notebook}'s {key!r} taken from {path} (no record of {notebook} in "
+            f"{places[0].parent})",
+            file=sys.stderr,
         )
     values = load(path)["values"]
     if key not in values:

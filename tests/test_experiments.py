@@ -7,6 +7,7 @@ import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import experiments as ex
+from mechlib.hexflex.nonlinear import ConvergenceError
 
 SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
 
@@ -148,6 +149,14 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
 
 
+def test_crossing_labels_say_above_below_or_where() -> None:
+    lin = {
+        "crossing": np.array([np.inf, 0.1, 0.456]),
+        "below_sweep": np.array([False, True, False]),
+    }
+    assert ex.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
+
+
 def test_linear_range_refuses_bad_input_by_name() -> None:
     err = np.ones((2, 6))
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2 strictly incr"):
@@ -162,3 +171,50 @@ def test_linear_range_refuses_bad_input_by_name() -> None:
         ex.linear_range([0.1, 0.3, 1.0], err)
     with pytest.raises(ValueError, match="level"):
         ex.linear_range([0.1, 1.0], err, level=0.0)
+
+
+def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch) -> None:
+    def task(spec, kind, forces, steps):
+        if forces[0, 0] > 0.5:
+            raise ConvergenceError("did not converge", forces[0].tolist(), 2e-3)
+        return 2.0 * forces
+
+    monkeypatch.setattr(ex, "_task", task)
+    d = _design(20)
+    index, poses, failures = ex.run_keeping_failures(SPEC, d, kind="nonlinear", progress=False)
+    bad = np.flatnonzero(d[:, 0] > 0.5)
+    assert bad.size and [f.index for f in failures] == bad.tolist()
+    assert index.tolist() == np.flatnonzero(d[:, 0] <= 0.5).tolist()
+    np.testing.assert_array_equal(poses, 2.0 * d[index])
+    first = failures[0]
+    assert first.forces == tuple(d[bad[0]]) and first.residual == 2e-3
+    assert "did not converge" in first.reason
+    # an error without a residual (a lost worker) is listed with nan
+    monkeypatch.setattr(ex, "_task", FakeTask(fail_at=2, error=OSError("worker lost")))
+    _, _, lost = ex.run_keeping_failures(SPEC, d[:3], kind="nonlinear", progress=False)
+    assert [f.index for f in lost] == [1] and np.isnan(lost[0].residual)
+    # nothing failed: every row, no failures
+    monkeypatch.setattr(ex, "_task", lambda spec, kind, forces, steps: 2.0 * forces)
+    index, poses, failures = ex.run_keeping_failures(SPEC, d, kind="nonlinear", progress=False)
+    assert index.tolist() == list(range(20)) and failures == []
+
+
+def _blas_threads() -> int:
+    from threadpoolctl import threadpool_info
+
+    return max(i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas")
+
+
+def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -> None:
+    import os
+
+    with ex.worker_pool(2) as pool:
+        assert pool.submit(_blas_threads).result() == max(1, (os.cpu_count() or 1) // 2)
+        spec = ex.ModelSpec(SMALL, mesh_size=1.0)  # Q2: the non-linear solve
+        d = 3.0 * _design(2)
+        pooled = ex.run_experiments(spec, d, kind="nonlinear", executor=pool, progress=False)
+    here = ex.run_experiments(spec, d, kind="nonlinear", progress=False)
+    # BLAS thread counts differ (one per worker here): equal to the solver's tolerance, not bits
+    np.testing.assert_allclose(pooled, here, rtol=1e-8)
+    with pytest.raises(ValueError, match="workers must be"):
+        ex.worker_pool(0)

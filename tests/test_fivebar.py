@@ -8,6 +8,7 @@ from mechlib import published as pub
 from mechlib.fivebar import identification as idf
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import postures as ps
+from mechlib.fivebar import study
 
 PHI1 = kin.leg_vector(pub.TABLE7_NOMINAL, 1)
 PHI2 = kin.leg_vector(pub.TABLE7_NOMINAL, 2)
@@ -68,8 +69,14 @@ def test_noise_free_identification_recovers_the_real_parameters() -> None:
     np.testing.assert_allclose(
         idf.identify_leg_scipy(m["points"], m["psi1"], PHI1, 1), REAL1, atol=1e-9
     )
-    both = idf.identify_traditional(m["points"], m["psi1"], m["psi2"], PHI1, PHI2, MODES)
+    fit = idf.identify_traditional(m["points"], m["psi1"], m["psi2"], PHI1, PHI2, MODES)
+    assert fit.converged and fit.residual_rms < 1e-12
+    both = fit.phi
     np.testing.assert_allclose(both, np.r_[REAL1, REAL2], atol=1e-10)
+    stopped = idf.identify_traditional(
+        m["points"], m["psi1"], m["psi2"], PHI1, PHI2, MODES, max_iter=1
+    )
+    assert not stopped.converged and stopped.iterations == 1
     assert idf.position_errors(CANDIDATES, both[:6], both[6:], REAL1, REAL2, MODES).max() < 1e-9
 
 
@@ -139,3 +146,27 @@ def test_poses_at_a_singularity_are_refused_by_name() -> None:
     with pytest.raises(ValueError, match=r"serial \(leg 1 stretched or folded\)"):
         kin.check_regular(stretched[None, :], PHI1, PHI2, MODES)
     kin.check_regular(CANDIDATES, PHI1, PHI2, MODES)  # the study's candidates are regular
+
+
+def test_monte_carlo_leaves_unconverged_trials_out_of_both_strategies(monkeypatch) -> None:
+    real = study.one_trial
+    calls = {"n": 0}
+
+    def flaky(*args, **kwargs):
+        calls["n"] += 1
+        res = real(*args, **kwargs)
+        return {**res, "converged": calls["n"] != 2}  # the second trial "fails"
+
+    mech = study.Mechanism(PHI1, PHI2, REAL1, REAL2, MODES)
+    cands = CANDIDATES
+    chosen = study.select(mech, cands, 9, 18)
+    grid = cands[:20]
+    full = study.monte_carlo(mech, cands, chosen, grid, 1e-4, 3, seed=1)
+    monkeypatch.setattr(study, "one_trial", flaky)
+    part = study.monte_carlo(mech, cands, chosen, grid, 1e-4, 3, seed=1)
+    assert full["failed"].tolist() == [] and part["failed"].tolist() == [1]
+    for key in ("rms_dc", "rms_trad", "param_err_dc", "param_err_trad"):
+        np.testing.assert_array_equal(part[key], full[key][[0, 2]])  # paired, same noise draws
+    monkeypatch.setattr(study, "one_trial", lambda *a, **k: {**real(*a, **k), "converged": False})
+    with pytest.raises(RuntimeError, match="no Monte Carlo trial converged"):
+        study.monte_carlo(mech, cands, chosen, grid, 1e-4, 2, seed=1)

@@ -72,6 +72,23 @@ def test_a_value_recorded_by_another_notebook_is_found_or_named(
         recorded_value("nowhere", "geometry")
 
 
+def test_a_value_from_the_default_build_is_announced(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture
+) -> None:
+    default = tmp_path / "repo"
+    rec = Recorder("upstream")
+    rec.value("geometry", [3.0])
+    rec.save(default / "build" / "records")
+    monkeypatch.setattr(records, "REPO_ROOT", default)
+    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path / "run"))  # holds no record
+    assert recorded_value("upstream", "geometry") == [3.0]
+    err = capsys.readouterr().err
+    assert "upstream's 'geometry' taken from" in err and str(tmp_path / "run") in err
+    monkeypatch.setenv(records.RECORDS_ENV, str(default / "build" / "records"))
+    assert recorded_value("upstream", "geometry") == [3.0]
+    assert capsys.readouterr().err == ""  # this build's own record: nothing to say
+
+
 def test_fe_cache_dir_follows_its_environment_variable(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -82,7 +82,8 @@ def check_rank(c: object, names: tuple[str, ...] = PARAM_NAMES) -> None:
 
 @dataclass(frozen=True)
 class LegFit:
-    """Result of identifying one leg."""
+    """Result of an identification: one leg's parameters, or both legs' stacked
+    (:func:`identify_traditional`)."""
 
     phi: np.ndarray
     iterations: int
@@ -239,32 +240,41 @@ def identify_traditional(
     *,
     max_iter: int = 50,
     tol: float = 1e-12,
-) -> np.ndarray:
+) -> LegFit:
     """All twelve parameters at once from one shared posture set (Eq 19 on the total matrix).
 
-    Returns the stacked ``[φ1, φ2]``. The Gauss–Newton step solves the full (2N × 12) system of
-    :func:`total_jacobian`; it equals two independent leg solves because the matrix is block
-    diagonal.
+    The Gauss–Newton step solves the full (2N × 12) system of :func:`total_jacobian`; it equals
+    two independent leg solves because the matrix is block diagonal. Returns a :class:`LegFit`
+    of the stacked ``[φ1, φ2]`` (its residual over both legs' readings), ``converged`` False when
+    the update was still above ``tol`` after ``max_iter`` iterations.
     """
     phi1_0 = check_leg(phi1_0, "phi1_0")
     phi = np.concatenate([phi1_0, check_leg(phi2_0, "phi2_0")])
     n1 = len(phi1_0)
     p = np.asarray(points, dtype=float)
     q = np.concatenate([np.asarray(psi1, dtype=float), np.asarray(psi2, dtype=float)])
+    max_iter = check_int("max_iter", max_iter, low=1, high=10_000)
+    tol = check_float("tol", tol, low=0.0, low_open=True)
     check_rank(
         total_jacobian(p, phi[:n1], phi[n1:], modes),
         tuple(f"{n}{k}" for k in (1, 2) for n in PARAM_NAMES),
     )
-    for _ in range(check_int("max_iter", max_iter, low=1, high=10_000)):
-        c = total_jacobian(p, phi[:n1], phi[n1:], modes)
-        pred = np.concatenate(
+
+    def readings(phi: np.ndarray) -> np.ndarray:
+        return np.concatenate(
             [joint_reading(p, phi[:n1], modes[0]), joint_reading(p, phi[n1:], modes[1])]
         )
-        dphi = np.linalg.lstsq(c, q - pred, rcond=None)[0]
+
+    iterations = 0
+    for iterations in range(1, max_iter + 1):  # noqa: B007 - the count is reported
+        c = total_jacobian(p, phi[:n1], phi[n1:], modes)
+        dphi = np.linalg.lstsq(c, q - readings(phi), rcond=None)[0]
         phi = phi + dphi
         if np.max(np.abs(dphi)) < tol:
             break
-    return phi
+    res = q - readings(phi)
+    converged = bool(np.max(np.abs(dphi)) < tol)
+    return LegFit(phi, iterations, float(np.sqrt(np.mean(res**2))), converged)
 
 
 def position_errors(

@@ -76,7 +76,8 @@ def one_trial(
     sigma: float,
     rng: np.random.Generator,
 ) -> dict[str, np.ndarray]:
-    """Simulate measurements and identify with both strategies; return identified parameters."""
+    """Simulate measurements and identify with both strategies; return identified parameters
+    and whether all three fits (two legs, the traditional one) converged."""
     m = mech
     sim1 = idf.simulate_measurements(
         candidates[chosen["leg1"]], m.real1, m.real2, m.nominal1, m.nominal2, m.modes, sigma, rng
@@ -95,7 +96,13 @@ def one_trial(
         simt["points"], simt["psi1"], simt["psi2"], m.nominal1, m.nominal2, m.modes
     )
     t2 = time.perf_counter()
-    return {"dc": np.r_[dc1.phi, dc2.phi], "trad": trad, "time_dc": t1 - t0, "time_trad": t2 - t1}
+    return {
+        "dc": np.r_[dc1.phi, dc2.phi],
+        "trad": trad.phi,
+        "time_dc": t1 - t0,
+        "time_trad": t2 - t1,
+        "converged": dc1.converged and dc2.converged and trad.converged,
+    }
 
 
 def position_error_map(mech: Mechanism, phi: np.ndarray, grid: np.ndarray) -> np.ndarray:
@@ -120,7 +127,14 @@ def monte_carlo(
     dict
         ``param_err_<s>`` (trials, 12) identified − real; ``rms_<s>`` (trials,) workspace RMS
         position error over ``grid``; ``local_sq_<s>`` (grid,) mean squared error per grid point;
-        ``time_<s>`` (trials,) identification solve times; for ``s`` in ``dc``, ``trad``.
+        ``time_<s>`` (trials,) identification solve times; for ``s`` in ``dc``, ``trad``;
+        ``failed`` the indices of the trials in which a fit did not converge, left out of every
+        array (of both strategies, which stay paired trial by trial).
+
+    Raises
+    ------
+    RuntimeError
+        If no trial converged.
     """
     sigma = check_float("sigma", sigma, low=0.0)
     n_trials = check_int("n_trials", n_trials, low=1, high=100_000)
@@ -129,16 +143,28 @@ def monte_carlo(
         f"{k}_{s}": [] for k in ("param_err", "rms", "time") for s in ("dc", "trad")
     }
     local = {"dc": np.zeros(len(grid)), "trad": np.zeros(len(grid))}
-    for _ in range(n_trials):
+    failed: list[int] = []
+    for trial in range(n_trials):
         res = one_trial(mech, candidates, chosen, sigma, rng)
+        if not res["converged"]:
+            failed.append(trial)
+            continue
         for s in ("dc", "trad"):
             err = position_error_map(mech, res[s], grid)
             out[f"param_err_{s}"].append(res[s] - mech.real)
             out[f"rms_{s}"].append(np.sqrt(np.mean(err**2)))
             out[f"time_{s}"].append(res[f"time_{s}"])
             local[s] += err**2 / n_trials
+    used = n_trials - len(failed)
+    if used == 0:
+        raise RuntimeError(
+            f"no Monte Carlo trial converged (sigma = {sigma:g}, n_trials = {n_trials})"
+        )
     arrays = {k: np.asarray(v) for k, v in out.items()}
-    arrays["local_sq_dc"], arrays["local_sq_trad"] = local["dc"], local["trad"]
+    # mean over the trials used (the same numbers as before when none failed)
+    arrays["local_sq_dc"] = local["dc"] * (n_trials / used)
+    arrays["local_sq_trad"] = local["trad"] * (n_trials / used)
+    arrays["failed"] = np.asarray(failed, dtype=int)
     return arrays
 
 
@@ -202,7 +228,8 @@ def sensitivity(
     -------
     list of dict
         One row per (sigma, n): ``sigma``, ``n_per_leg``, ``rms_dc_um``, ``rms_trad_um`` (mean
-        workspace RMS), ``share_dc_better`` and ``p_value`` (:func:`paired_verdict`).
+        workspace RMS), ``share_dc_better`` and ``p_value`` (:func:`paired_verdict`), and
+        ``failed_trials``, the trials left out because a fit did not converge.
     """
     rows = []
     for n in counts:
@@ -219,6 +246,7 @@ def sensitivity(
                     "rms_trad_um": 1e6 * float(mc["rms_trad"].mean()),
                     "share_dc_better": verdict["share_a_better"],
                     "p_value": verdict["p_value"],
+                    "failed_trials": len(mc["failed"]),
                 }
             )
     return rows

@@ -24,7 +24,13 @@ from pathlib import Path
 import numpy as np
 
 from mechlib.hexflex.geometry import HexFlexGeometry
-from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_FORCE_N, HexFlexModel
+from mechlib.hexflex.model import (
+    AL7075_POISSON,
+    AL7075_YOUNG_MPA,
+    MAX_FORCE_N,
+    HexFlexModel,
+    check_forces,
+)
 from mechlib.params import check_choice, check_increasing, check_int, check_matrix
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
@@ -74,6 +80,31 @@ def model_for(spec: ModelSpec) -> HexFlexModel:
     return spec.build()
 
 
+def _limit_blas(threads: int) -> None:
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=threads, user_api="blas")  # for the life of the worker
+
+
+def worker_pool(workers: int) -> cf.ProcessPoolExecutor:
+    """A process pool for FE experiments whose workers share the cores' BLAS threads.
+
+    Each worker's BLAS (SuperLU's factorisations run through it) gets ``cores // workers``
+    threads, at least one, instead of every core: ``workers`` processes that each start a
+    thread per core oversubscribe the machine.
+
+    Parameters
+    ----------
+    workers : int
+        Worker processes, 1 .. 64.
+    """
+    import os
+
+    workers = check_int("workers", workers, low=1, high=64)
+    threads = max(1, (os.cpu_count() or 1) // workers)
+    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_limit_blas, initargs=(threads,))
+
+
 class InProcessExecutor(cf.Executor):
     """Runs each submitted call at once in the calling thread (the default executor)."""
 
@@ -95,12 +126,38 @@ class InProcessExecutor(cf.Executor):
 
 
 class ExperimentError(RuntimeError):
-    """An experiment failed; ``completed`` maps run index → pose (6,) of every finished run."""
+    """Experiments failed.
 
-    def __init__(self, message: str, failed: list[int], completed: dict[int, np.ndarray]):
+    ``failed`` lists the run indices without a result; ``completed`` maps run index → pose (6,)
+    of every finished run; ``reasons`` maps each failed index to its task's error message and
+    ``residuals`` to the last relative residual of a non-linear run that did not converge
+    (``nan`` when the error carries none).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        failed: list[int],
+        completed: dict[int, np.ndarray],
+        reasons: dict[int, str] | None = None,
+        residuals: dict[int, float] | None = None,
+    ):
         super().__init__(message)
         self.failed = failed
         self.completed = completed
+        self.reasons = reasons or {}
+        self.residuals = residuals or {}
+
+
+@dataclass(frozen=True)
+class FailedRun:
+    """One experiment without a result: its index in the design, forces [N], the last relative
+    residual of the non-linear solve (``nan`` if unknown) and the error message."""
+
+    index: int
+    forces: tuple[float, ...]
+    residual: float
+    reason: str
 
 
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
@@ -138,13 +195,7 @@ def check_forces_design(design: object) -> np.ndarray:
             f"design must have 6 factor columns (T1D1 … T3D2) and one row per run, got shape "
             f"{d.shape}"
         )
-    d = check_matrix("design [N]", d, shape=(None, 6))
-    worst = float(np.abs(d).max(initial=0.0))
-    if worst > MAX_FORCE_N:
-        raise ValueError(
-            f"design [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}], got {worst:g}"
-        )
-    return d
+    return check_forces("design [N]", d)
 
 
 def run_experiments(
@@ -205,6 +256,7 @@ def run_experiments(
         from tqdm.auto import tqdm
 
         bar = tqdm(total=len(pending), desc=f"{kind} FE experiments", unit="task")
+    pending_rows = {int(rows[0]): rows for rows in pending.values()}
     for fut in cf.as_completed(pending):
         rows = pending[fut]
         try:
@@ -223,13 +275,54 @@ def run_experiments(
         failed.sort(key=lambda p: p[0])
         first, err = failed[0]
         lost = [int(i) for i in np.flatnonzero(~done)]
+        reasons: dict[int, str] = {}
+        residuals: dict[int, float] = {}
+        for start, error in failed:
+            rows = pending_rows[start]
+            for i in rows:
+                reasons[int(i)] = str(error)
+                residuals[int(i)] = float(getattr(error, "residual", np.nan))
         raise ExperimentError(
             f"{len(lost)} of {len(d)} experiments failed (first: run {first}, forces "
             f"{d[first].tolist()} N: {err}); {int(done.sum())} completed results are kept",
             failed=lost,
             completed={int(i): out[i].copy() for i in np.flatnonzero(done)},
+            reasons=reasons,
+            residuals=residuals,
         )
     return out
+
+
+def run_keeping_failures(
+    spec: ModelSpec, design: object, **kwargs
+) -> tuple[np.ndarray, np.ndarray, list[FailedRun]]:
+    """:func:`run_experiments` for statistics that must leave failed runs out, and say so.
+
+    Parameters
+    ----------
+    spec, design, **kwargs
+        As for :func:`run_experiments`.
+
+    Returns
+    -------
+    index : ndarray (m,) of int
+        Rows of ``design`` that have a result, increasing.
+    poses : ndarray (m, 6)
+        Their poses [µm, µrad].
+    failures : list of FailedRun
+        The other rows, by index, with their forces, last residual and error.
+    """
+    d = check_forces_design(design)
+    try:
+        return np.arange(len(d)), run_experiments(spec, d, **kwargs), []
+    except ExperimentError as err:
+        index = np.array(sorted(err.completed), dtype=int)
+        poses = np.array([err.completed[i] for i in index], dtype=float).reshape(-1, 6)
+        failures = [
+            FailedRun(i, tuple(d[i].tolist()), err.residuals.get(i, np.nan), err.reasons.get(i, ""))
+            for i in err.failed
+        ]
+        return index, poses, failures
 
 
 def linearity_sweep(
@@ -253,7 +346,8 @@ def linearity_sweep(
     dict
         ``amplitude`` (m,), ``linear`` and ``nonlinear`` poses (m, 6), ``rel_pct`` (m, 6) the
         pointwise relative error 100 |ψ_nl − ψ_lin| / |ψ_nl| of the linear model per component,
-        and ``iterations`` (m,) the Newton iterations spent.
+        ``iterations`` (m,) the corrections (back-substitutions) and ``factorisations`` (m,) the
+        tangent factorisations spent.
     """
     d = check_matrix("direction", np.atleast_2d(np.asarray(direction, dtype=float)), shape=(1, 6))[
         0
@@ -267,15 +361,17 @@ def linearity_sweep(
     steps = check_int("steps", steps, low=1, high=100)
     lin = model.poses(amps[:, None] * d)
     nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
+    facts = np.zeros(len(amps), dtype=int)
     for i, a in enumerate(amps):
-        nonlin[i], used = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
-        iters[i] = sum(used)
+        nonlin[i], stats = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
+        iters[i], facts[i] = sum(stats.iterations), sum(stats.factorisations)
     return {
         "amplitude": amps,
         "linear": lin,
         "nonlinear": nonlin,
         "rel_pct": 100 * np.abs(nonlin - lin) / np.abs(nonlin),
         "iterations": iters,
+        "factorisations": facts,
     }
 
 
@@ -323,3 +419,17 @@ def linear_range(amplitude: object, rel_pct: object, level: float = 1.0) -> dict
             step = (np.log(level) - log_e[i - 1, j]) / exponent[i - 1, j]
             crossing[j] = np.exp(log_a[i - 1] + step)
     return {"exponent": exponent, "crossing": crossing, "below_sweep": below}
+
+
+def crossing_labels(lin_range: dict[str, np.ndarray], amplitude: object) -> list[str]:
+    """Table labels of :func:`linear_range`'s crossings: ``"> a_max"`` where a component stays
+    below the budget over the sweep, ``"≤ a_min"`` where it is already above it at the smallest
+    amplitude, else the interpolated amplitude [N] to two significant digits."""
+    a = check_increasing("amplitude [N]", amplitude, low=0.0, low_open=True)
+    labels = []
+    for cross, below in zip(lin_range["crossing"], lin_range["below_sweep"], strict=True):
+        if np.isinf(cross):
+            labels.append(f"> {a[-1]:g}")
+        else:
+            labels.append(f"≤ {cross:g}" if below else f"{cross:.2g}")
+    return labels

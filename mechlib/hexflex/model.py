@@ -11,7 +11,9 @@ solve lives in :mod:`mechlib.hexflex.nonlinear`, the mesh study in
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import scipy.sparse.linalg as sla
@@ -114,14 +116,7 @@ class HexFlexModel:
     def check_forces(self, forces: object) -> np.ndarray:
         """Actuator forces as an (n, 6) array [N], each within ``±MAX_FORCE_N``."""
         f = np.asarray(forces, dtype=float)
-        f = check_matrix("forces [N]", f[None, :] if f.ndim == 1 else f, shape=(None, 6))
-        worst = np.abs(f).max(initial=0.0)
-        if worst > MAX_FORCE_N:
-            raise ValueError(
-                f"forces [N] must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}] N, "
-                f"got |force| = {worst:g}"
-            )
-        return f
+        return check_forces("forces [N]", f[None, :] if f.ndim == 1 else f)
 
     def assembled_stiffness(self):
         """The reduced stiffness matrix (free DOFs, SciPy sparse) [N/mm]."""
@@ -155,15 +150,15 @@ class HexFlexModel:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
         return self.pose_of(self.solve_reduced(forces)).T
 
-    def poses_nonlinear(self, forces: object, steps: int = 1) -> tuple[np.ndarray, list[int]]:
-        """Pose (6,) of the geometrically non-linear solution and the Newton iterations per load
-        step (see :func:`mechlib.hexflex.nonlinear.solve`)."""
+    def poses_nonlinear(self, forces: object, steps: int = 1, method: str = "modified"):
+        """Pose (6,) of the geometrically non-linear solution and what the solve spent
+        (:class:`mechlib.hexflex.nonlinear.SolveStats`; see ``NonlinearSolver.solve``)."""
         from mechlib.hexflex import nonlinear
 
         if self._nonlinear is None:
             self._nonlinear = nonlinear.NonlinearSolver(self)
-        u, iterations = self._nonlinear.solve(forces, steps=steps)
-        return self.pose_of(u), iterations
+        u, stats = self._nonlinear.solve(forces, steps=steps, method=method)
+        return self.pose_of(u), stats
 
     def poses_plain_sfepy(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) by SfePy's own ``Problem.solve()``, one full solve per load case.
@@ -239,6 +234,32 @@ class HexFlexModel:
         n = len(self.planar.nodes)
         vert = full[: len(self.fe.coors), :3]
         return 0.5 * (vert[:n] + vert[n : 2 * n]) if self.element == "q2" else vert[:n]
+
+
+def model_maker(
+    *, young: float, poisson: float, element: str, mesh_fraction: float
+) -> Callable[..., HexFlexModel]:
+    """``make(g, **kwargs) -> HexFlexModel`` with these settings and flexure elements
+    ``mesh_fraction`` of ``g``'s narrowest width (one model recipe for a whole study)."""
+    return partial(
+        _make_model, young=young, poisson=poisson, element=element, mesh_fraction=mesh_fraction
+    )
+
+
+def _make_model(g: geo.HexFlexGeometry, *, mesh_fraction: float, **kwargs) -> HexFlexModel:
+    return HexFlexModel(g, mesh_size=mesh_fraction * g.narrowest, **kwargs)
+
+
+def check_forces(name: str, forces: object) -> np.ndarray:
+    """Actuator forces ``name`` as an (n, 6) array of finite values within ``±MAX_FORCE_N`` [N]
+    (the one force bound of the FE models and the experiment runner)."""
+    f = check_matrix(name, forces, shape=(None, 6))
+    worst = float(np.abs(f).max(initial=0.0))
+    if worst > MAX_FORCE_N:
+        raise ValueError(
+            f"{name} must lie in [-{MAX_FORCE_N:g}, {MAX_FORCE_N:g}], got |force| = {worst:g}"
+        )
+    return f
 
 
 def coarsening_for(coarse_widths: float, fraction: float) -> float:
