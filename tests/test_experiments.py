@@ -7,6 +7,7 @@ import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import experiments as ex
+from mechlib.hexflex import linearity
 from mechlib.hexflex.nonlinear import ConvergenceError
 
 SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
@@ -141,7 +142,7 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     # component 0: err = 2 a (passes 1 % at 0.5 N); 1: err = 4 a² (at 0.5 N, exponent 2);
     # 2: never reaches 1 %; 3: already above 1 % at the smallest amplitude
     err = np.column_stack([2 * amps, 4 * amps**2, 0.1 * amps, 20 * amps])
-    out = ex.linear_range(amps, err, level=1.0)
+    out = linearity.linear_range(amps, err, level=1.0)
     np.testing.assert_allclose(out["exponent"][:, 0], 1.0, rtol=1e-12)
     np.testing.assert_allclose(out["exponent"][:, 1], 2.0, rtol=1e-12)
     np.testing.assert_allclose(out["crossing"][:2], [0.5, 0.5], rtol=1e-12)
@@ -154,23 +155,23 @@ def test_crossing_labels_say_above_below_or_where() -> None:
         "crossing": np.array([np.inf, 0.1, 0.456]),
         "below_sweep": np.array([False, True, False]),
     }
-    assert ex.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
+    assert linearity.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
 
 
 def test_linear_range_refuses_bad_input_by_name() -> None:
     err = np.ones((2, 6))
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2 strictly incr"):
-        ex.linear_range([1.0, 0.1], err)
+        linearity.linear_range([1.0, 0.1], err)
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2"):
-        ex.linear_range([1.0], err[:1])
+        linearity.linear_range([1.0], err[:1])
     with pytest.raises(ValueError, match=r"amplitude \[N\] must be > 0"):
-        ex.linear_range([-0.1, 1.0], err)
+        linearity.linear_range([-0.1, 1.0], err)
     with pytest.raises(ValueError, match="rel_pct must be > 0"):
-        ex.linear_range([0.1, 1.0], np.zeros((2, 6)))
+        linearity.linear_range([0.1, 1.0], np.zeros((2, 6)))
     with pytest.raises(ValueError, match="rel_pct must have shape"):
-        ex.linear_range([0.1, 0.3, 1.0], err)
+        linearity.linear_range([0.1, 0.3, 1.0], err)
     with pytest.raises(ValueError, match="level"):
-        ex.linear_range([0.1, 1.0], err, level=0.0)
+        linearity.linear_range([0.1, 1.0], err, level=0.0)
 
 
 def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch) -> None:

@@ -158,6 +158,7 @@ class NonlinearSolver:
         tol: float = NEWTON_TOL,
         max_iterations: int = 40,
         method: str = "modified",
+        initial: np.ndarray | None = None,
     ) -> tuple[np.ndarray, SolveStats]:
         """Geometrically non-linear equilibrium under one actuator force vector (6,) [N].
 
@@ -205,6 +206,15 @@ class NonlinearSolver:
         load = model.load_vectors() @ f[0]
         scale = np.linalg.norm(load)
         u = np.zeros(model.n_dofs)
+        if initial is not None:
+            if steps != 1:
+                raise ValueError(f"initial needs steps = 1, got steps = {steps}")
+            u = np.array(initial, dtype=float)
+            if u.shape != (model.n_dofs,) or not np.all(np.isfinite(u)):
+                raise ValueError(
+                    f"initial must be a finite displacement vector of {model.n_dofs} DOFs, "
+                    f"got shape {u.shape}"
+                )
         stats = SolveStats()
         if scale == 0.0:
             return u, stats
