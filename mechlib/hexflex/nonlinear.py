@@ -23,9 +23,11 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
+import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import problem as fe
+from mechlib.hexflex.cholesky import SOLVERS, PatternCholesky
 from mechlib.hexflex.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
 
@@ -117,9 +119,15 @@ class NonlinearSolver:
         How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
         built here, ≈ 0.8 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
         same matrix to round-off (``make bench`` compares them).
+    factorisation : {"cholmod", "superlu"}
+        How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
+        (:class:`mechlib.hexflex.cholesky.PatternCholesky`, default; an indefinite tangent falls
+        back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
     """
 
-    def __init__(self, model: HexFlexModel, tangent: str = "batched") -> None:
+    def __init__(
+        self, model: HexFlexModel, tangent: str = "batched", factorisation: str = "cholmod"
+    ) -> None:
         if model.element != "q2":
             raise ValueError(
                 f"element must be 'q2' for the non-linear solve (SfePy's shell10x is linear), "
@@ -134,6 +142,8 @@ class NonlinearSolver:
         self.evaluator = tl_evaluator(model, register_svk_term())
         self.tangent = check_choice("tangent", tangent, TANGENTS)
         self._batched = SVKTangent(model) if self.tangent == "batched" else None
+        self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
+        self._cholesky: PatternCholesky | None = None
 
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
         """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""
@@ -148,8 +158,15 @@ class NonlinearSolver:
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
         if self.tangent == "sfepy":
-            return factorise(self.evaluator.eval_tangent_matrix(u).copy()).solve
-        return factorise(self._batched.matrix(u)).solve
+            matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u))
+            matrix.sort_indices()
+        else:
+            matrix = self._batched.matrix(u)
+        if self.factorisation == "superlu":
+            return factorise(matrix).solve
+        if self._cholesky is None:
+            self._cholesky = PatternCholesky(matrix)
+        return self._cholesky.factorise(matrix)
 
     def solve(
         self,
