@@ -33,12 +33,15 @@ class SingularityField:
         True where both legs reach the point (rows follow ``y``, columns ``x``).
     parallel : numpy.ndarray, shape (n, n)
         Sine of the angle between the distal links; NaN where a leg cannot reach.
+    modes : (int, int)
+        The legs' working modes the measure was computed for.
     """
 
     x: np.ndarray
     y: np.ndarray
     reachable: np.ndarray
     parallel: np.ndarray
+    modes: tuple[int, int]
 
 
 def check_window(window: object) -> tuple[float, float, float, float]:
@@ -96,7 +99,8 @@ def singularity_field(
     par = np.full(len(pts), np.nan)
     if np.any(ok):
         par[ok] = kin.singularity_measures(pts[ok], phi1, phi2, modes)["parallel"]
-    return SingularityField(xs, ys, ok.reshape(xx.shape), par.reshape(xx.shape))
+    modes = (int(modes[0]), int(modes[1]))
+    return SingularityField(xs, ys, ok.reshape(xx.shape), par.reshape(xx.shape), modes)
 
 
 def working_side_share(field: SingularityField, point: object) -> dict[str, float]:

@@ -15,6 +15,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from mechlib.fivebar.study import SHARED_PER_LEG_POSTURE
 from mechlib.fivebar.workspace import SingularityField
 from mechlib.plotting.style import (
     ACTIVE_COLOR,
@@ -70,7 +71,8 @@ def fivebar_workspace(
     for chain in legs:
         c = np.asarray(chain, dtype=float)
         ax.plot(c[:, 0], c[:, 1], "-o", color="k", lw=2, ms=4)
-    ax.plot([], [], color=ACTIVE_COLOR, label="parallel singularity (working modes +1, −1)")
+    modes = ", ".join(f"{m:+d}".replace("-", "−") for m in field.modes)
+    ax.plot([], [], color=ACTIVE_COLOR, label=f"parallel singularity (working modes {modes})")
     ax.plot([], [], color=OURS_COLOR, label="maximal inscribed workspace")
     ax.fill([], [], color=REGION_COLOR, label="reachable by both legs")
     ax.set_aspect("equal")
@@ -317,7 +319,8 @@ def fivebar_sensitivity(
     for n, marker in zip(counts, "osd^v", strict=False):
         sub = table[table["n_per_leg"] == n]
         ratio = sub["rms_dc_um"] / sub["rms_trad_um"]
-        ax0.plot(sub["sigma"], ratio, marker=marker, label=f"{n} per leg / {2 * n} shared")
+        shared = SHARED_PER_LEG_POSTURE * n
+        ax0.plot(sub["sigma"], ratio, marker=marker, label=f"{n} per leg / {shared} shared")
         ax1.plot(sub["sigma"], 100 * sub["share_dc_better"], marker=marker)
     ax0.axhline(1.0, color="k", lw=0.8)
     ax1.axhline(50.0, color="k", lw=0.8)
