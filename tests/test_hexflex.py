@@ -421,3 +421,22 @@ def test_identify_stops_on_a_bound_instead_of_failing() -> None:
     fit = ident.identify(SMALL, target, _FREE, _power_law, _power_law, max_evaluations=10)
     assert fit.n_evaluations <= 10
     assert ident.at_bounds(fit.geometry, _FREE) == ["thickness"]
+
+
+def test_midplane_shapes_of_the_inverse_forces_move_the_stage_by_the_poses(
+    shell_model: HexFlexModel,
+) -> None:
+    # Fig 3's data: the shapes of pure poses. The shell's mid-plane nodes are its FE nodes, so a
+    # rigid-body fit over the stage's nodes recovers each requested pose.
+    poses = np.diag([10.0, 10.0, 10.0, 100.0, 100.0, 100.0])  # µm, µrad
+    forces = shell_model.forces_for_poses(poses)
+    shapes = shell_model.midplane_shapes(forces)
+    nodes = shell_model.planar.nodes
+    assert shapes.shape == (6, len(nodes), 3)
+    points = np.c_[nodes, np.zeros(len(nodes))]
+    stage = geo.in_stage(points, SMALL)
+    fit = fit_operator(points[stage])
+    fitted = np.array([fit @ s[stage].ravel() for s in shapes])
+    np.testing.assert_allclose(fitted, poses, atol=1e-6 * np.abs(poses).max())
+    one = shell_model.midplane_displacements(forces[2])  # one solve: the same to round-off
+    np.testing.assert_allclose(shapes[2], one, rtol=1e-12, atol=1e-12 * np.abs(one).max())

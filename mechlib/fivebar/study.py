@@ -23,6 +23,9 @@ from mechlib.params import check_float, check_int
 
 #: Fewest postures that can identify one leg's six parameters.
 N_MIN_POSTURES = kin.N_LEG_PARAMS
+#: Shared postures of the traditional method per D&C posture of one leg in the sensitivity sweep
+#: (the thesis's budgets, sec. 3.7 items 8 and 10: equal end-effector measurements).
+SHARED_PER_LEG_POSTURE = 2
 
 
 @dataclass(frozen=True)
@@ -221,8 +224,8 @@ def sensitivity(
     """D&C vs traditional over a grid of noise levels and posture counts.
 
     For each ``n`` in ``counts`` D&C gets ``n`` postures per leg and the traditional method
-    ``2 n`` shared postures (the thesis's ratio, equal end-effector measurements); each cell
-    runs :func:`monte_carlo` with the same ``seed``.
+    ``SHARED_PER_LEG_POSTURE · n`` shared postures (the thesis's ratio, equal end-effector
+    measurements); each cell runs :func:`monte_carlo` with the same ``seed``.
 
     Returns
     -------
@@ -234,7 +237,7 @@ def sensitivity(
     rows = []
     for n in counts:
         n = check_int("counts", n, low=N_MIN_POSTURES, high=len(candidates) // 2)
-        chosen = select(mech, candidates, n, 2 * n)
+        chosen = select(mech, candidates, n, SHARED_PER_LEG_POSTURE * n)
         for s in sigmas:
             mc = monte_carlo(mech, candidates, chosen, grid, s, n_trials, seed)
             verdict = paired_verdict(mc["rms_dc"], mc["rms_trad"])

@@ -309,6 +309,17 @@ def point_support_ratio(g: geo.HexFlexGeometry) -> float:
     return 2 * g.tab_outer / (g.beam_radius**2 + g.tab_half_width**2) * MM_PER_M
 
 
+def three_joint_radius(ratio: float) -> float:
+    """Largest radius ρ [mm] of three joints (120° apart) carrying a rigid stage at which lifting
+    one joint tilts the stage by at least ``ratio`` = θx / z [rad/m] of its centre's lift.
+
+    The stage settles in the plane of its joints: lifting one by z₁ lifts the centre by z₁/3 and
+    tilts it by z₁/(1.5 ρ), so θx / z = 2/ρ, and a ratio needs ρ ≤ 2 / ratio.
+    """
+    ratio = check_float("ratio [rad/m]", ratio, low=0.0, low_open=True)
+    return 2 / ratio * MM_PER_M
+
+
 def prefit(
     target: Sequence[float],
     start: geo.HexFlexGeometry,

@@ -228,6 +228,15 @@ class HexFlexModel:
         """Displacements (n_nodes, 3) [mm] of the planar mesh nodes for one force vector (6,)."""
         return self.midplane_of(self.solve_reduced(forces)[:, 0])
 
+    def midplane_shapes(self, forces: object) -> np.ndarray:
+        """Mid-plane displacements (n, n_nodes, 3) [mm] for force vectors (n, 6) [N].
+
+        One back-substitution for all of them; e.g. the shapes of given stage poses are
+        ``midplane_shapes(forces_for_poses(poses))`` (Fig 3).
+        """
+        reduced = self.solve_reduced(forces)
+        return np.stack([self.midplane_of(reduced[:, i]) for i in range(reduced.shape[1])])
+
     def midplane_of(self, reduced: np.ndarray) -> np.ndarray:
         """Mid-plane displacements (n_nodes, 3) [mm] of one reduced displacement vector."""
         full = self.fe.pb.get_variables().make_full_vec(reduced).reshape(-1, self.fe.n_comp)
