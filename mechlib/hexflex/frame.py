@@ -15,8 +15,9 @@ not a replacement for FE.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import scipy.linalg as sl
@@ -291,6 +292,11 @@ def hexflex_frame_compliance(
     the unit actuator forces T1D1, T1D2, T2D1, T2D2, T3D1, T3D2 (Eq 4), as the FE model's."""
     scale = np.r_[np.full(3, UM_PER_MM), np.full(3, URAD_PER_RAD)][:, None]
     return scale * (stage_compliance(g, young, poisson, shear, n_elements) @ actuator_wrenches(g))
+
+
+def compliance_maker(young: float, poisson: float) -> Callable[[geo.HexFlexGeometry], np.ndarray]:
+    """Geometry → :func:`hexflex_frame_compliance` for this material (the identification's)."""
+    return partial(hexflex_frame_compliance, young=young, poisson=poisson)
 
 
 def point_support_ratio(g: geo.HexFlexGeometry) -> float:
