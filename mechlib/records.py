@@ -1,7 +1,9 @@
 """Records of key numbers: written by notebooks, compared with committed references.
 
 A notebook creates one :class:`Recorder`, records each key number together with the tolerance
-that the numerics can guarantee, and saves ``build/records/<notebook>.json``. The committed
+that the numerics can guarantee — in the same call glued for the page's text and completed into
+its reproduction-report row (:mod:`mechlib.report`) — and saves
+``build/records/<notebook>.json``. The committed
 reference ``tests/references/<notebook>.json`` is a copy of such a file, made by
 ``make references`` from a fresh run (never typed). :func:`compare` checks a run against its
 reference with the reference's per-value tolerances.
@@ -149,7 +151,7 @@ class Recorder:
         rtol = check_float("rtol", 0.0 if rtol is None else rtol, low=0.0)
         atol = check_float("atol", 0.0 if atol is None else atol, low=0.0)
         entry = {"value": _plain(value), "rtol": rtol, "atol": atol}
-        pasted = {}
+        pasted, glued = {}, {}
         for name, index in ({glue: ()} if isinstance(glue, str) else dict(glue or {})).items():
             item = np.asarray(value)[index]
             if item.ndim or not _is_number(item):
@@ -159,10 +161,13 @@ class Recorder:
                 )
             self._check_name(name)
             pasted[name] = item.item()
-            self.glued[name] = {"key": key, **({"index": _plain(index)} if index != () else {})}
+            glued[name] = {"key": key, **({"index": _plain(index)} if index != () else {})}
         specs = [] if row is None else [row] if hasattr(row, "row") else list(row)
-        self.report += [{k: _plain(v) for k, v in s.row(value).items()} for s in specs]
+        rows = [{k: _plain(v) for k, v in s.row(value).items()} for s in specs]
+        # nothing is kept before every check has passed
         self.values[key] = entry
+        self.glued |= glued
+        self.report += rows
         for name, item in pasted.items():
             self.paste(name, item)
         return value

@@ -193,7 +193,8 @@ def test_bad_glue_and_text_are_refused() -> None:
     with pytest.raises(ValueError, match="must name one number"):
         rec.value("f", True, glue="f")  # a bool is no number to quote
     with pytest.raises(ValueError, match="already used"):
-        rec.value("u", 3.0, atol=0, glue="v0")
+        rec.value("u", [3.0, 4.0], atol=0, glue={"fresh": 0, "v0": 1})
+    assert "fresh" not in rec.glued  # a refused call leaves nothing behind
     with pytest.raises(ValueError, match="of=\\) or why"):
         rec.text("t", "θx")
     with pytest.raises(ValueError, match="not recorded"):
