@@ -81,6 +81,16 @@ def orthogonality(design: object) -> np.ndarray:
     return arr.T @ arr / arr.shape[0]
 
 
+def is_balanced(design: object) -> bool:
+    """Whether every column takes each level of the design equally often (a U-type design).
+
+    The levels are those found anywhere in the design (see :func:`level_counts`): a column that
+    misses one of them, or repeats one more often than another, makes the design unbalanced.
+    """
+    counts = np.array(list(level_counts(design).values()))  # (levels, factors)
+    return bool(np.all(counts == counts[0, 0]))
+
+
 def match_columns(full: object, target: object) -> dict[str, np.ndarray]:
     """Find how ``target`` is obtained from ``full`` by row order, column choice and signs.
 

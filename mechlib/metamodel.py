@@ -20,6 +20,23 @@ RIDGE_ALPHAS = np.logspace(-8, 4, 49)
 LASSO_MAX_ITER = 200_000
 """Iteration cap of the coordinate-descent lasso (the data are nearly noise-free)."""
 
+# Thresholds of the claims the book checks on noise-free linear FE data (double precision, a
+# compliance of condition number ~10 with unit-norm rows): far above round-off, far below any
+# modelling error.
+EXACT_INVERSE_TOL = 1e-8
+"""Largest max |S⁻¹S − I| for "S_T⁻¹ S_T = I" (Eq 9)."""
+ROUND_TRIP_TOL = 1e-10
+"""Largest relative pose → force → pose error of :func:`round_trip_error` for an exact inverse."""
+NEGLIGIBLE_SECOND_ORDER = 1e-6
+"""Largest second-order / linear coefficient ratio (:func:`second_order_ratio`) for "the
+quadratic and interaction terms of Eq 6 are negligible"."""
+SOLVER_PRECISION_PCT = 1e-5
+"""Largest pointwise error [%] of a meta-model that agrees with its FE model "to solver
+precision" (Table 5 against the linear FE model)."""
+DISTINCT_ERROR_FACTOR = 100.0
+"""How many times smaller one error level must be than another to call them of different
+origin (two orders of magnitude): Table 5's published errors against the non-linear FE's."""
+
 
 def _xy(design: object, responses: object) -> tuple[np.ndarray, np.ndarray]:
     x = check_matrix("design", design)
@@ -159,6 +176,19 @@ def inverse(s: object) -> dict[str, np.ndarray]:
     }
 
 
+def round_trip_error(s: object, s_inv: object, poses: object) -> float:
+    """max |S (S_inv ψ) − ψ| / max |ψ| over ``poses`` (runs, outputs): pose → force → pose."""
+    p = check_matrix("poses", poses)
+    back = predict_linear(s, predict_linear(s_inv, p))
+    return float(np.abs(back - p).max() / np.abs(p).max())
+
+
+def relative_to_rows(s: object, reference: object) -> np.ndarray:
+    """|S − C| / max |C| of each row of ``reference`` C: entry errors on each response's scale."""
+    c = check_matrix("reference", reference)
+    return np.abs(check_matrix("S", s, shape=c.shape) - c) / np.abs(c).max(axis=1, keepdims=True)
+
+
 def error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
     """Validation errors per output column (Eqs 10–11 and two relative errors).
 
@@ -277,3 +307,66 @@ def predict_gp(models: list[object], design: object) -> np.ndarray:
     """Predictions (runs, outputs) of :func:`fit_gp` models."""
     x = check_matrix("design", design)
     return np.column_stack([m.predict(x) for m in models])
+
+
+def quadratic_parts(fit: dict[str, object]) -> dict[str, np.ndarray]:
+    """The terms of a :func:`fit_quadratic` model by order.
+
+    Returns
+    -------
+    dict
+        ``b0`` (outputs,); ``S`` (outputs, factors), the linear terms as a linear model's
+        matrix; ``second`` (terms, outputs), the squares and products.
+    """
+    names = list(fit["names"])
+    coef = check_matrix("coef", fit["coef"], shape=(len(names), None))
+    k = sum("^" not in n and "*" not in n for n in names) - 1  # "1", then "t0" … "t<k-1>"
+    return {"b0": coef[0], "S": coef[1 : 1 + k].T, "second": coef[1 + k :]}
+
+
+def second_order_ratio(fit: dict[str, object]) -> np.ndarray:
+    """Largest |second-order coefficient| over largest |linear one|, per output (outputs,)."""
+    parts = quadratic_parts(fit)
+    return np.abs(parts["second"]).max(axis=0) / np.abs(parts["S"]).max(axis=1)
+
+
+def predict(fit: object, design: object) -> np.ndarray:
+    """Predictions (runs, outputs) of any fit of this module.
+
+    ``fit`` is what :func:`fit_linear` or :func:`fit_penalized` (a dict with ``S``),
+    :func:`fit_quadratic` (a dict with ``coef``) or :func:`fit_gp` (a list) returned.
+    """
+    if isinstance(fit, list):
+        return predict_gp(fit, design)
+    if isinstance(fit, dict) and "coef" in fit:
+        return predict_quadratic(fit["coef"], design)
+    if isinstance(fit, dict) and "S" in fit:
+        return predict_linear(fit["S"], design, fit.get("b0"))
+    raise TypeError(f"fit must be a result of a fit_* function of this module, got {type(fit)}")
+
+
+def surrogate_errors(
+    fits: dict[str, object], cases: dict[str, tuple[object, object]], metric: str = "max_range_pct"
+) -> dict[tuple[str, str], np.ndarray]:
+    """One :func:`error_metrics` metric of every fit on every validation case.
+
+    Parameters
+    ----------
+    fits : dict
+        Name → fit (see :func:`predict`).
+    cases : dict
+        Name → ``(design, truth)``.
+    metric : str
+        A key of :func:`error_metrics`.
+
+    Returns
+    -------
+    dict
+        ``(fit name, case name)`` → the metric per output, fits in the outer order.
+    """
+    metric = check_choice("metric", metric, ("maxabs", "rmse", "max_rel_pct", "max_range_pct"))
+    return {
+        (name, case): error_metrics(truth, predict(fit, design))[metric]
+        for name, fit in fits.items()
+        for case, (design, truth) in cases.items()
+    }

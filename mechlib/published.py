@@ -12,7 +12,7 @@ Sources (section numbers of ``shared/paper/thesis.md``):
 
 - Table 1 (sec. 2.6.1): factor levels.
 - Table 2 (sec. 2.6.2): 12-run Plackett–Burman design and responses.
-- Table 3 (sec. 2.6.2): Lenth's analysis.
+- Table 3 (sec. 2.6.2): Lenth's analysis; the list after it (items 1–4): the main factors.
 - Table 4 (sec. 2.6.3): 30-run uniform design and responses.
 - Eq 8 (sec. 2.6.4): the fitted input–output matrix S_T.
 - Table 5 (sec. 2.6.5): validation errors of the meta-model over 1000 random runs.
@@ -128,6 +128,17 @@ _TABLE3_SUMMARY = """
 TABLE3_SUMMARY_ROWS: tuple[str, ...] = ("nu", "S0", "ME", "SME")
 TABLE3_SUMMARY = parse_printed(_TABLE3_SUMMARY)
 TABLE3_SUMMARY_RESOLUTION = printed_resolution(_TABLE3_SUMMARY)
+
+# --- sec. 2.6.2, the list after Table 3: the factors that "mainly affect" each response -------
+# items 1–4, one set per response in the order of Eq 5 (x, y, z, θx, θy, θz).
+SEC262_MAIN_FACTORS: tuple[frozenset[str], ...] = (
+    frozenset({"T1D1", "T2D1", "T3D1"}),  # item 1: x
+    frozenset({"T2D1", "T3D1"}),  # item 3: y
+    frozenset({"T1D2", "T2D2", "T3D2"}),  # item 2: z
+    frozenset({"T1D2", "T2D2", "T3D2"}),  # item 2: θx
+    frozenset({"T2D2", "T3D2"}),  # item 4: θy
+    frozenset({"T1D1", "T2D1", "T3D1"}),  # item 1: θz
+)
 
 # --- Table 4: uniform design (6 factors, 30 runs) and responses -----------------------------
 # columns as Table 2.

@@ -1,7 +1,9 @@
 """Records of key numbers: written by notebooks, compared with committed references.
 
 A notebook creates one :class:`Recorder`, records each key number together with the tolerance
-that the numerics can guarantee, and saves ``build/records/<notebook>.json``. The committed
+that the numerics can guarantee — in the same call glued for the page's text and completed into
+its reproduction-report row (:mod:`mechlib.report`) — and saves
+``build/records/<notebook>.json``. The committed
 reference ``tests/references/<notebook>.json`` is a copy of such a file, made by
 ``make references`` from a fresh run (never typed). :func:`compare` checks a run against its
 reference with the reference's per-value tolerances.
@@ -21,12 +23,14 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from mechlib import report
 from mechlib.params import check_float
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -57,22 +61,59 @@ def _plain(value: Any) -> Any:
     return value
 
 
+#: What a notebook may glue into its prose through :meth:`Recorder.value`: a name, or names
+#: of elements of the recorded value by their index (``{"nu_x": 0, "nu_thx": 3}``).
+Glue = str | Mapping[str, int | tuple[int, ...]]
+
+
+def _is_number(value: Any) -> bool:
+    return np.asarray(value).dtype.kind in "iuf"
+
+
+def paste(name: str, value: Any) -> None:
+    """Glue ``value`` under ``name`` for the notebook's prose (myst-nb, not displayed)."""
+    from myst_nb import glue  # here: only notebooks paste, and myst-nb imports IPython
+
+    glue(name, value, display=False)
+
+
 @dataclass
 class Recorder:
-    """Collects the key numbers and reproduction-report rows of one notebook.
+    """Collects the key numbers, the numbers quoted in the prose and the report rows of one
+    notebook.
+
+    One call, :meth:`value`, records a number with its tolerance, makes it (or some of its
+    elements) available to the prose under a glue name, and adds the report row that compares
+    it with the thesis: every number the book quotes is then checked against the committed
+    references. Text that is not a number goes to the prose through :meth:`text`, which says
+    what it is made from or why it is not checked.
 
     Parameters
     ----------
     notebook : str
         Notebook name without extension; the record file is ``<notebook>.json``.
+    paste : callable, optional
+        ``paste(name, value)`` glues a value for the prose; default :func:`paste` (myst-nb).
     """
 
     notebook: str
     values: dict[str, dict[str, Any]] = field(default_factory=dict)
     report: list[dict[str, Any]] = field(default_factory=list)
+    glued: dict[str, dict[str, Any]] = field(default_factory=dict)
+    paste: Callable[[str, Any], None] = field(default=paste, repr=False)
 
-    def value(self, key: str, value: Any, *, rtol: float = 0.0, atol: float = 0.0) -> Any:
-        """Record ``value`` under ``key`` with the tolerance a re-run must meet.
+    def value(
+        self,
+        key: str,
+        value: Any,
+        *,
+        rtol: float | None = None,
+        atol: float | None = None,
+        glue: Glue | None = None,
+        row: report.RowSpec | Sequence[report.RowSpec] | None = None,
+    ) -> Any:
+        """Record ``value`` under ``key`` with the tolerance a re-run must meet; glue it for the
+        prose and add its report row(s).
 
         Parameters
         ----------
@@ -81,29 +122,103 @@ class Recorder:
         value : float, int, bool, str or array_like
             The number(s). Arrays are stored as nested lists.
         rtol, atol : float
-            Relative and absolute tolerance for numbers: ``|a - b| <= atol + rtol * |b|``.
+            Relative and absolute tolerance of numbers: ``|a - b| <= atol + rtol * |b|``. A
+            number (int or float, scalar or array) needs at least one of them (``atol=0`` for
+            exact); booleans and strings are compared exactly.
+        glue : str or dict, optional
+            Glue name of a scalar number, or ``{name: index}`` to glue elements of an array
+            (as Python ``float``/``int``, what myst-nb formats).
+        row : report.Comparison, report.Claim or report.Computed, or a list of them
+            Report rows completed with this value (see :mod:`mechlib.report`).
 
         Returns
         -------
         The value as given, so a record can be written inline.
+
+        Raises
+        ------
+        ValueError
+            A key or glue name used twice, a number without tolerance, a negative tolerance,
+            a non-finite number, or a glued element that is not a number.
         """
         if key in self.values:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
-        check_float("rtol", rtol, low=0.0)
-        check_float("atol", atol, low=0.0)
-        self.values[key] = {"value": _plain(value), "rtol": rtol, "atol": atol}
+        if _is_number(value) and rtol is None and atol is None:
+            raise ValueError(
+                f"{key}: a number is recorded with its tolerance: give rtol and/or atol "
+                f"(atol=0 for an exact value)"
+            )
+        rtol = check_float("rtol", 0.0 if rtol is None else rtol, low=0.0)
+        atol = check_float("atol", 0.0 if atol is None else atol, low=0.0)
+        entry = {"value": _plain(value), "rtol": rtol, "atol": atol}
+        pasted, glued = {}, {}
+        for name, index in ({glue: ()} if isinstance(glue, str) else dict(glue or {})).items():
+            item = np.asarray(value)[index]
+            if item.ndim or not _is_number(item):
+                raise ValueError(
+                    f"{key}: glue {name!r} must name one number, got {item!r} (text goes "
+                    f"through Recorder.text)"
+                )
+            self._check_name(name)
+            pasted[name] = item.item()
+            glued[name] = {"key": key, **({"index": _plain(index)} if index != () else {})}
+        specs = [] if row is None else [row] if hasattr(row, "row") else list(row)
+        rows = [{k: _plain(v) for k, v in s.row(value).items()} for s in specs]
+        # nothing is kept before every check has passed
+        self.values[key] = entry
+        self.glued |= glued
+        self.report += rows
+        for name, item in pasted.items():
+            self.paste(name, item)
         return value
 
-    def report_row(self, row: dict[str, Any]) -> None:
-        """Add one row of the reproduction report (see :mod:`mechlib.report`)."""
-        self.report.append({k: _plain(v) for k, v in row.items()})
+    def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> str | float:
+        """Glue a text that is not a recorded number (a label, a formatted list) for the prose.
+
+        Parameters
+        ----------
+        name : str
+            Glue name.
+        text : str or float
+            The text; NaN for a number this run does not compute.
+        of : str
+            The record key(s) the text is made from (comma-separated), recorded before.
+        why : str
+            Otherwise, why the text is not checked (e.g. a machine-dependent timing).
+
+        Raises
+        ------
+        ValueError
+            A glue name used twice, neither or both of ``of`` and ``why``, an ``of`` key not
+            recorded, or a finite number (numbers go through :meth:`value`).
+        """
+        if not isinstance(text, str) and not (isinstance(text, float) and np.isnan(text)):
+            raise ValueError(f"text {name!r} must be a str or NaN, got {text!r} (numbers: value)")
+        if bool(of) == bool(why):
+            raise ValueError(f"text {name!r}: say what it is made of (of=) or why not (why=)")
+        missing = [k.strip() for k in of.split(",") if of and k.strip() not in self.values]
+        if missing:
+            raise ValueError(f"text {name!r} is made of {missing}, which were not recorded")
+        self._check_name(name)
+        self.glued[name] = {"text_of": of} if of else {"unchecked": why}
+        self.paste(name, text)
+        return text
+
+    def _check_name(self, name: str) -> None:
+        if not name or name in self.glued:
+            raise ValueError(f"glue name {name!r} is empty or was already used in {self.notebook}")
 
     def save(self, folder: Path | None = None) -> Path:
         """Write ``<folder>/<notebook>.json`` deterministically and return its path."""
         folder = Path(folder) if folder is not None else records_dir()
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{self.notebook}.json"
-        payload = {"notebook": self.notebook, "values": self.values, "report": self.report}
+        payload = {
+            "notebook": self.notebook,
+            "values": self.values,
+            "report": self.report,
+            "glue": self.glued,
+        }
         path.write_text(json.dumps(payload, indent=1, sort_keys=True) + "\n")
         return path
 

@@ -1,17 +1,24 @@
 """Rows of the reproduction report: published value, ours, difference, verdict.
 
-Each notebook adds rows through :func:`compare_row` (numbers) or :func:`claim_row` (statements
-checked by a computed test); :mod:`mechlib.bookbuild` gathers the rows of every record into the
-book's report page. A verdict is never typed: it follows from the numbers and tolerances given.
+A row is built by :func:`compare_row` (numbers against the published ones), :func:`claim_row`
+(a statement checked by a computed test) or :func:`computed_row` (a number the thesis does not
+publish). Notebooks describe a row without "ours" — :class:`Comparison`, :class:`Claim`,
+:class:`Computed` — and hand it to :meth:`mechlib.records.Recorder.value`, which fills in the
+value it records: the number in the report is then the number checked against the references.
+:mod:`mechlib.bookbuild` gathers the rows of every record into the book's report page. A verdict
+is never typed: it follows from the numbers and tolerances given.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 import numpy as np
 
-from mechlib.params import check_float
+from mechlib.params import check_float, check_int
 
 REPRODUCED = "reproduced"
 WITHIN = "within tolerance"
@@ -124,3 +131,88 @@ def computed_row(artefact: str, quantity: str, ours: object) -> dict[str, Any]:
         "max_rel_diff": None,
         "verdict": COMPUTED,
     }
+
+
+def float_format(digits: int, zero_below: float = 0.0) -> Callable[[float], str]:
+    """A number format for tables (pandas' ``display.float_format``): ``digits`` significant
+    digits, and ``"0"`` for magnitudes up to ``zero_below`` (round-off residue of exact zeros)."""
+    digits = check_int("digits", digits, low=1, high=17)
+    zero_below = check_float("zero_below", zero_below, low=0.0)
+    return partial(_format_float, digits=digits, zero_below=zero_below)
+
+
+def _format_float(value: float, *, digits: int, zero_below: float) -> str:
+    return "0" if abs(value) <= zero_below else f"{value:.{digits}g}"
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A :func:`compare_row` waiting for our value (the recorded one); fields as there.
+
+    ``part`` selects the compared part of the recorded value (an index, e.g. ``2`` or
+    ``(slice(None), 0)``); ``None`` compares all of it.
+    """
+
+    artefact: str
+    quantity: str
+    published: object
+    resolution: object = 0.0
+    rtol: float = 0.0
+    atol: object = 0.0
+    tolerance: str = ""
+    cause: str = ""
+    part: object = None
+
+    def row(self, ours: object) -> dict[str, Any]:
+        """The report row for our value ``ours`` (see :func:`compare_row`)."""
+        ours = np.asarray(ours, dtype=float)
+        return compare_row(
+            self.artefact,
+            self.quantity,
+            self.published,
+            ours if self.part is None else ours[self.part],
+            resolution=self.resolution,
+            rtol=self.rtol,
+            atol=self.atol,
+            tolerance=self.tolerance,
+            cause=self.cause,
+        )
+
+
+@dataclass(frozen=True)
+class Claim:
+    """A :func:`claim_row` waiting for its test: the recorded value says whether it holds."""
+
+    artefact: str
+    claim: str
+    evidence: str
+
+    def row(self, holds: object) -> dict[str, Any]:
+        """The row for ``holds``: a bool, or booleans that must all be true.
+
+        Raises
+        ------
+        TypeError
+            If ``holds`` is not boolean (a number must first be compared with a named
+            threshold).
+        """
+        arr = np.asarray(holds)
+        if arr.dtype != bool:
+            raise TypeError(f"{self.artefact}: a claim holds or not, got {holds!r}")
+        return claim_row(self.artefact, self.claim, self.evidence, bool(arr.all()))
+
+
+@dataclass(frozen=True)
+class Computed:
+    """A :func:`computed_row` waiting for our value."""
+
+    artefact: str
+    quantity: str
+
+    def row(self, ours: object) -> dict[str, Any]:
+        """The row for our value ``ours``."""
+        return computed_row(self.artefact, self.quantity, ours)
+
+
+#: A report row waiting for the recorded value it reports on.
+RowSpec = Comparison | Claim | Computed

@@ -198,3 +198,42 @@ def dominant(effects: object, fraction: float = 0.01) -> np.ndarray:
     c = np.abs(np.asarray(effects, dtype=float).ravel())
     fraction = check_float("fraction", fraction, low=0.0, high=1.0, low_open=True)
     return c >= fraction * c.max() if c.max() > 0 else np.zeros(c.size, dtype=bool)
+
+
+def lenth_columns(effects: object, alpha: float = 0.05) -> list[Lenth]:
+    """:func:`lenth` of each response: one analysis per column of ``effects`` (factors, outputs)."""
+    c = check_matrix("effects", effects)
+    return [lenth(c[:, j], alpha=alpha) for j in range(c.shape[1])]
+
+
+def lenth_summary(lenths: list[Lenth], fields: tuple[str, ...]) -> np.ndarray:
+    """(fields, outputs) array of :class:`Lenth` attributes, e.g. ``("median_abs", "me")``."""
+    unknown = sorted(set(fields) - set(Lenth.__dataclass_fields__))
+    if unknown:
+        raise ValueError(
+            f"fields {unknown} are not Lenth results; have {list(Lenth.__dataclass_fields__)}"
+        )
+    return np.array([[getattr(lz, f) for lz in lenths] for f in fields], dtype=float)
+
+
+def dominant_columns(effects: object, fraction: float = 0.01) -> np.ndarray:
+    """:func:`dominant` per response: a (factors, outputs) mask, each column against its own
+    largest effect."""
+    c = check_matrix("effects", effects)
+    return np.column_stack([dominant(c[:, j], fraction) for j in range(c.shape[1])])
+
+
+def active_columns(effects: object, lenths: list[Lenth], simultaneous: bool = False) -> np.ndarray:
+    """Lenth-active effects per response: a (factors, outputs) mask, column j judged by
+    ``lenths[j]`` (:meth:`Lenth.active`)."""
+    c = check_matrix("effects", effects, shape=(None, len(lenths)))
+    return np.column_stack([lz.active(c[:, j], simultaneous) for j, lz in enumerate(lenths)])
+
+
+def factor_sets(mask: object, factors: tuple[str, ...] | list[str]) -> list[frozenset[str]]:
+    """The names of the factors marked in each column of a (factors, outputs) mask."""
+    m = np.asarray(mask, dtype=bool)
+    if m.ndim != 2 or m.shape[0] != len(factors):
+        raise ValueError(f"mask must be ({len(factors)}, outputs), got shape {m.shape}")
+    names = np.asarray(factors)
+    return [frozenset(names[col].tolist()) for col in m.T]

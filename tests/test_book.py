@@ -60,7 +60,8 @@ def test_find_section_prefers_most_artefacts_then_words_then_none() -> None:
         FINAL_CELL,
         '_ = rec.value("k", 1.0, rtol=1e-3)',
         'for key, val in {"a": x, "b": y}.items():\n    glue(key, float(val), display=False)',
-        'rec.report_row(report.computed_row("Fig 2", "dims", dims))\nrec.value("n", n)',
+        'rec.value("d", dims, atol=0, row=report.Computed("Fig 2", "dims"))\nrec.value("n", n)',
+        'rec.text("label", "θx", of="d")\nrec.value("r", r, rtol=1e-6, glue={"r0": 0})',
     ],
 )
 def test_bookkeeping_cells_are_recognised(source: str) -> None:

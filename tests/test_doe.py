@@ -71,3 +71,13 @@ def test_wrong_factor_count_and_bad_run_counts() -> None:
         doe.plackett_burman(10)
     with pytest.raises(ValueError, match=r"n_designs must be in \[1, 100000\]"):
         doe.random_balanced_designs(pub.TABLE4_DESIGN, 0, seed=1)
+
+
+def test_balance_means_every_level_equally_often_in_every_column() -> None:
+    assert doe.is_balanced(pub.TABLE4_DESIGN) and doe.is_balanced(pub.TABLE2_DESIGN)
+    assert doe.is_balanced(np.array([[-1.0, 1.0], [1.0, -1.0], [0.0, 0.0]]))
+    repeated = pub.TABLE4_DESIGN.copy()
+    repeated[0, 2] = repeated[1, 2]  # one level six times, another four times, in one column
+    assert not doe.is_balanced(repeated)
+    missing = np.array([[-1.0, -1.0], [0.0, 1.0], [1.0, -1.0], [-1.0, 1.0]])
+    assert not doe.is_balanced(missing)  # column 1 never takes the level 0

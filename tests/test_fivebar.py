@@ -170,3 +170,51 @@ def test_monte_carlo_leaves_unconverged_trials_out_of_both_strategies(monkeypatc
     monkeypatch.setattr(study, "one_trial", lambda *a, **k: {**real(*a, **k), "converged": False})
     with pytest.raises(RuntimeError, match="no Monte Carlo trial converged"):
         study.monte_carlo(mech, cands, chosen, grid, 1e-4, 2, seed=1)
+
+
+def test_the_claim_rule_needs_a_majority_and_significance() -> None:
+    assert study.claim_holds({"share_a_better": 0.51, "p_value": 0.049})
+    assert not study.claim_holds({"share_a_better": study.CLAIM_MIN_SHARE, "p_value": 1e-9})
+    assert not study.claim_holds({"share_a_better": 0.9, "p_value": study.CLAIM_MAX_P})
+
+
+def test_parameter_rms_over_all_and_per_parameter_by_hand() -> None:
+    errors = np.array([[3.0, 0.0], [0.0, 4.0]])
+    assert study.parameter_rms(errors) == 2.5  # sqrt((9 + 16) / 4)
+    np.testing.assert_allclose(study.parameter_rms(errors, per_parameter=True), [4.5**0.5, 8**0.5])
+    with pytest.raises(ValueError, match=r"errors must be \(trials, parameters\)"):
+        study.parameter_rms(np.ones(3))
+
+
+def test_summary_rows_in_micrometres_with_a_t_interval() -> None:
+    from scipy import stats
+
+    mc = {
+        "rms_dc": np.array([1e-6, 3e-6]),
+        "rms_trad": np.array([2e-6, 2e-6]),
+        "param_err_dc": np.array([[3.0, 0.0], [0.0, 4.0]]),
+        "param_err_trad": np.zeros((2, 2)),
+        "time_dc": np.array([1e-3, 3e-3, 2e-3]),
+        "time_trad": np.array([1e-3]),
+    }
+    rows = study.summary(mc)
+    half = stats.t.ppf(0.975, 1) * np.sqrt(2) / np.sqrt(2)  # t · s / √n, s = √2 µm
+    assert list(rows) == ["D&C", "traditional"]
+    dc = rows["D&C"]
+    assert dc["workspace RMS mean [µm]"] == pytest.approx(2.0)
+    assert dc["95 % CI low"] == pytest.approx(2.0 - half) and dc["95 % CI high"] == pytest.approx(
+        2.0 + half
+    )
+    assert dc["param. RMS error (all 12)"] == 2.5 and dc["solve time median [ms]"] == pytest.approx(
+        2.0
+    )
+    assert rows["traditional"]["95 % CI low"] == pytest.approx(2.0)  # no spread, no interval
+
+
+def test_measurement_totals_reproduce_table8_for_its_counts() -> None:
+    """Table 8 prints 18·2(2+1) = 108 for D&C and 2·18·2 = 72 for 18 shared postures."""
+    counts = study.measurement_counts(pub.SEC37_POSTURES_PER_LEG, pub.SEC37_POSTURES_PER_LEG)
+    assert counts["dc"]["total"] == pub.TABLE8_MEASUREMENTS_DC
+    assert counts["trad"]["total"] == pub.TABLE8_MEASUREMENTS_TRADITIONAL
+    defaults = study.measurement_counts(18, 36)
+    assert defaults["trad"]["total"] == 144 == 2 * 36 + 2 * 36

@@ -268,15 +268,3 @@ def test_prefit_survives_geometries_the_constructor_rejects() -> None:
 def test_bad_input_raises_value_error_naming_the_parameter(call, match: str) -> None:
     with pytest.raises(ValueError, match=match):
         call()
-
-
-def test_three_joint_radius_is_the_plane_through_three_lifted_joints() -> None:
-    # a rigid stage on three joints at radius ρ (T1 on +y): lift T1's joint by z₁, fit the plane
-    # z = c + θx·y − θy·x through the three joints; the centre lifts by c, the stage tilts by θx
-    rho, z1 = 7.5, 1e-3
-    a = np.deg2rad(geo.TAB_ANGLES_DEG)
-    joints = rho * np.c_[np.cos(a), np.sin(a)]
-    c, theta_x, _ = np.linalg.solve(np.c_[np.ones(3), joints[:, 1], -joints[:, 0]], [z1, 0, 0])
-    assert fr.three_joint_radius(theta_x / c * fr.MM_PER_M) == pytest.approx(rho, rel=1e-12)
-    with pytest.raises(ValueError, match=r"ratio \[rad/m\] must be"):
-        fr.three_joint_radius(0.0)

@@ -81,3 +81,54 @@ def test_bad_input() -> None:
         metamodel.fit_penalized(np.zeros((30, 6)), np.zeros((30, 6)), method="elastic")
     with pytest.raises(ValueError, match="square"):
         metamodel.inverse(np.zeros((6, 5)))
+
+
+def test_quadratic_parts_recover_a_known_second_order_model() -> None:
+    x, s, y = _linear_data()
+    y = y + 5.0
+    y[:, 0] += 0.5 * x[:, 0] ** 2
+    y[:, 1] += 0.2 * x[:, 1] * x[:, 2]
+    fit = metamodel.fit_quadratic(x, y)
+    parts = metamodel.quadratic_parts(fit)
+    np.testing.assert_allclose(parts["b0"], 5.0, atol=1e-6)
+    np.testing.assert_allclose(parts["S"], s, rtol=1e-9, atol=1e-6)
+    names = fit["names"][7:]
+    np.testing.assert_allclose(parts["second"][names.index("t0^2"), 0], 0.5, rtol=1e-9)
+    np.testing.assert_allclose(parts["second"][names.index("t1*t2"), 1], 0.2, rtol=1e-9)
+    ratio = metamodel.second_order_ratio(fit)
+    assert ratio[0] == pytest.approx(0.5 / np.abs(s[0]).max(), rel=1e-9)
+    assert ratio[2:].max() < 1e-9  # the other outputs are linear
+
+
+def test_predict_and_surrogate_errors_know_every_fit() -> None:
+    x, s, y = _linear_data()
+    fits = {
+        "exact": metamodel.fit_linear(x, y),
+        "quadratic": metamodel.fit_quadratic(x, y),
+        "twice": {"S": 2 * s},  # predicts 2y: its error is |y|, 100 % of the range
+    }
+    errors = metamodel.surrogate_errors(fits, {"train": (x, y), "half": (x[:10], y[:10])})
+    assert list(errors) == [
+        ("exact", "train"),
+        ("exact", "half"),
+        ("quadratic", "train"),
+        ("quadratic", "half"),
+        ("twice", "train"),
+        ("twice", "half"),
+    ]
+    assert errors[("exact", "half")].max() < 1e-9 and errors[("quadratic", "train")].max() < 1e-8
+    np.testing.assert_allclose(errors[("twice", "train")], 100.0)
+    with pytest.raises(TypeError, match="result of a fit_"):
+        metamodel.predict({"weights": s}, x)
+    with pytest.raises(ValueError, match="metric must be one of"):
+        metamodel.surrogate_errors(fits, {"train": (x, y)}, metric="mape")
+
+
+def test_round_trip_and_row_relative_errors_by_hand() -> None:
+    s = pub.EQ8_ST
+    poses = metamodel.predict_linear(s, np.eye(6))
+    inv = metamodel.inverse(s)["S_inv"]
+    assert metamodel.round_trip_error(s, inv, poses) < 1e-12
+    assert metamodel.round_trip_error(s, 1.01 * inv, poses) == pytest.approx(0.01, rel=1e-9)
+    dev = metamodel.relative_to_rows([[1.0, 2.5], [0.0, 10.0]], [[1.0, 2.0], [1.0, 10.0]])
+    np.testing.assert_allclose(dev, [[0.0, 0.25], [0.1, 0.0]])

@@ -65,3 +65,16 @@ def test_verdicts_follow_the_numbers() -> None:
     with pytest.raises(ValueError, match="a cause must be given"):
         report.compare_row("T", "q", [1.0], [1.2])
     assert report.claim_row("T", "c", "e", False)["verdict"] == "claim not supported"
+
+
+def test_table_number_format_shows_round_off_as_zero_but_not_nan() -> None:
+    fmt = report.float_format(6, zero_below=1e-9)
+    assert [fmt(v) for v in (123456.7, -1e-12, 2e-9, float("nan"))] == [
+        "123457",
+        "0",
+        "2e-09",
+        "nan",
+    ]
+    assert report.float_format(3)(0.0) == "0" and report.float_format(3)(1e-20) == "1e-20"
+    with pytest.raises(ValueError, match="digits must be in"):
+        report.float_format(0)

@@ -38,3 +38,11 @@ def test_printed_designs_use_the_table1_levels() -> None:
     for design in (pub.TABLE2_DESIGN, pub.TABLE4_DESIGN):
         assert design.min() == pub.TABLE1_LOW_N and design.max() == pub.TABLE1_HIGH_N
     assert np.all(np.isin(pub.TABLE2_DESIGN, (-1, 1)))
+
+
+def test_the_claimed_main_factors_are_the_non_zero_pattern_of_eq8() -> None:
+    """Sec. 2.6.2's items 1–4 name, per response, exactly the factors with a non-zero Eq 8
+    entry: the transcription agrees with the thesis's own matrix."""
+    assert len(pub.SEC262_MAIN_FACTORS) == len(pub.RESPONSES)
+    for row, claimed in zip(pub.EQ8_ST, pub.SEC262_MAIN_FACTORS, strict=True):
+        assert claimed == {f for f, c in zip(pub.FACTORS, row, strict=True) if c != 0}

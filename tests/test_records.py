@@ -7,10 +7,32 @@ from pathlib import Path
 
 import pytest
 
+from mechlib.book import quoted
 from mechlib.records import REPO_ROOT, compare, load, records_dir
 
 REFERENCES = REPO_ROOT / "tests" / "references"
 NOTEBOOKS = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))
+
+
+def _quoted(notebook: str) -> list[str]:
+    """Glue names the notebook's own text and the book's pages quote from it."""
+    page = REPO_ROOT / "notebooks" / f"{notebook}.ipynb"
+    names = [n for p, n in quoted.glue_references(quoted.markdown_of(page)) if not p]
+    for md in sorted((REPO_ROOT / "book").glob("*.md")):
+        names += [n for p, n in quoted.glue_references(md.read_text()) if Path(p).stem == notebook]
+    return names
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS)
+def test_every_number_the_text_quotes_is_a_recorded_value(notebook: str) -> None:
+    """A number reaches the prose only through Recorder.value, so the comparison above checks
+    it; text glued by Recorder.text says what it is made of or why it is not checked."""
+    record = records_dir() / f"{notebook}.json"
+    assert record.exists(), f"{notebook} wrote no record at {record}"
+    names = _quoted(notebook)
+    assert names, f"{notebook}'s text quotes no glued value: is the glue role pattern right?"
+    problems = quoted.unchecked_glue(load(record), names)
+    assert not problems, "\n".join(problems)
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS)

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechlib import records
+from mechlib import records, report
+from mechlib.book import quoted
 from mechlib.records import Recorder, compare, load, recorded_value, update_references
 
 
@@ -17,7 +18,7 @@ def test_recorder_roundtrip_and_deterministic_bytes(tmp_path: Path) -> None:
         rec = Recorder("demo")
         rec.value("b.matrix", np.arange(4.0).reshape(2, 2), rtol=1e-9)
         rec.value("a.flag", True)
-        rec.value("a.count", np.int64(3))
+        rec.value("a.count", np.int64(3), atol=0)
         return rec.save(folder).read_bytes()
 
     assert write(tmp_path / "one") == write(tmp_path / "two")
@@ -36,13 +37,18 @@ def test_tolerances_are_relative_and_absolute() -> None:
 
 def test_bad_records_are_refused() -> None:
     rec = Recorder("demo")
-    rec.value("k", 1.0)
+    rec.value("k", 1.0, atol=0)
     with pytest.raises(ValueError, match="already recorded"):
-        rec.value("k", 2.0)
+        rec.value("k", 2.0, atol=0)
     with pytest.raises(ValueError, match="rtol must be >= 0"):
         rec.value("j", 1.0, rtol=-1)
     with pytest.raises(ValueError, match="finite"):
-        rec.value("nan", float("nan"))
+        rec.value("nan", float("nan"), atol=0)
+    for number in (1.0, 3, [1, 2], np.zeros(2)):  # a number states its tolerance, even exact
+        with pytest.raises(ValueError, match="with its tolerance"):
+            rec.value("t", number)
+    rec.value("flag", np.bool_(True))  # booleans and strings are exact by nature
+    rec.value("label", "θx")
 
 
 def test_update_references_reports_changes(tmp_path: Path) -> None:
@@ -62,7 +68,7 @@ def test_a_value_recorded_by_another_notebook_is_found_or_named(
     tmp_path: Path, monkeypatch
 ) -> None:
     rec = Recorder("upstream")
-    rec.value("geometry", [1.0, 2.0])
+    rec.value("geometry", [1.0, 2.0], atol=0)
     rec.save(tmp_path)
     monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path))
     assert recorded_value("upstream", "geometry") == [1.0, 2.0]
@@ -77,7 +83,7 @@ def test_a_value_from_the_default_build_is_announced(
 ) -> None:
     default = tmp_path / "repo"
     rec = Recorder("upstream")
-    rec.value("geometry", [3.0])
+    rec.value("geometry", [3.0], atol=0)
     rec.save(default / "build" / "records")
     monkeypatch.setattr(records, "REPO_ROOT", default)
     monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path / "run"))  # holds no record
@@ -128,3 +134,96 @@ def test_determinism_rerun_is_cold_and_flags_a_changed_record(tmp_path: Path) ->
     problems = records.rerun_identical(first, notebooks)
     assert len(problems) == 1 and "probe: second run differs" in problems[0]
     assert "cold_cache" in problems[0]
+
+
+# --- one call: record, glue, report ------------------------------------------------------------
+def _pasting() -> tuple[Recorder, dict]:
+    pasted: dict = {}
+    return Recorder("nb", paste=pasted.__setitem__), pasted
+
+
+def test_a_glued_value_is_recorded_and_pasted_as_a_python_number(tmp_path: Path) -> None:
+    rec, pasted = _pasting()
+    rec.value("miw.radius", np.float64(0.25), rtol=1e-9, glue="miw_r")
+    rec.value("lenth.nu", np.array([19.6, 0.0, 3.1]), rtol=1e-9, glue={"nu_x": 0, "nu_thz": 2})
+    rec.value("s.matrix", np.arange(4.0).reshape(2, 2), atol=0, glue={"s_10": (1, 0)})
+    rec.value("n.runs", np.int64(12), atol=0, glue="n_runs")
+    assert pasted == {"miw_r": 0.25, "nu_x": 19.6, "nu_thz": 3.1, "s_10": 2.0, "n_runs": 12}
+    assert [type(pasted[k]) for k in ("miw_r", "s_10", "n_runs")] == [float, float, int]
+    saved = load(rec.save(tmp_path))
+    assert saved["values"]["miw.radius"] == {"value": 0.25, "rtol": 1e-9, "atol": 0.0}
+    assert saved["glue"]["miw_r"] == {"key": "miw.radius"}
+    assert saved["glue"]["s_10"] == {"key": "s.matrix", "index": [1, 0]}
+    assert quoted.unchecked_glue(saved, ["miw_r", "nu_x", "s_10", "n_runs"]) == []
+
+
+def test_a_value_glued_with_the_wrong_number_fails_the_comparison(tmp_path: Path) -> None:
+    reference = Recorder("nb", paste=lambda name, v: None)
+    reference.value("mc.rms_dc_um", 41.7, rtol=1e-6, glue="rms_dc")
+    rec, pasted = _pasting()
+    rec.value("mc.rms_dc_um", 41.8, rtol=1e-6, glue="rms_dc")  # what the prose now quotes
+    assert pasted == {"rms_dc": 41.8}
+    problems = compare(load(rec.save(tmp_path / "run")), load(reference.save(tmp_path / "ref")))
+    assert len(problems) == 1 and problems[0].startswith("mc.rms_dc_um: got 41.8, reference 41.7")
+
+
+def test_a_number_quoted_around_the_recorder_is_found() -> None:
+    rec, _ = _pasting()
+    rec.value("a", 1.0, atol=0, glue="a")
+    rec.text("component", "θx", of="a")
+    rec.text("latency", "3.2", why="machine-dependent timing")
+    record = {"notebook": "nb", "values": rec.values, "glue": rec.glued}
+    markdown = "{glue:text}`a:.2f`, {glue:text}`component`, {glue}`latency`, {glue:text}`b:.1f`"
+    names = [n for _, n in quoted.glue_references(markdown)]
+    assert quoted.unchecked_glue(record, names) == ["nb: 'b' is quoted but not glued by Recorder"]
+    record["glue"]["c"] = {"key": "gone"}
+    assert quoted.unchecked_glue(record, ["c"]) == ["nb: 'c' is glued from 'gone', not recorded"]
+
+
+def test_glue_references_name_the_page_and_drop_the_format() -> None:
+    text = "x {glue:text}`chapters/a.ipynb::ratio:.1f` y {glue}`n` z {glue:text}`p:.2%`"
+    assert quoted.glue_references(text) == [("chapters/a.ipynb", "ratio"), ("", "n"), ("", "p")]
+
+
+def test_bad_glue_and_text_are_refused() -> None:
+    rec, pasted = _pasting()
+    rec.value("v", [1.0, 2.0], atol=0, glue={"v0": 0})
+    with pytest.raises(ValueError, match="must name one number"):
+        rec.value("w", [1.0, 2.0], atol=0, glue="w")  # an array needs an index per name
+    with pytest.raises(ValueError, match="must name one number"):
+        rec.value("f", True, glue="f")  # a bool is no number to quote
+    with pytest.raises(ValueError, match="already used"):
+        rec.value("u", [3.0, 4.0], atol=0, glue={"fresh": 0, "v0": 1})
+    assert "fresh" not in rec.glued  # a refused call leaves nothing behind
+    with pytest.raises(ValueError, match="of=\\) or why"):
+        rec.text("t", "θx")
+    with pytest.raises(ValueError, match="not recorded"):
+        rec.text("t", "θx", of="nowhere")
+    with pytest.raises(ValueError, match="str or NaN"):
+        rec.text("t", 0.5, why="a number must not dodge its record")
+    assert rec.text("t", float("nan"), why="not computed in this run") != 0
+    assert list(pasted) == ["v0", "t"] and "w" not in rec.values and "u" not in rec.values
+
+
+def test_report_rows_report_the_recorded_value() -> None:
+    rec, _ = _pasting()
+    published = [1.0, 2.0]
+    rec.value(
+        "t.eff",
+        [1.004, 2.0],
+        rtol=1e-9,
+        row=report.Comparison("Table 3", "effects", published, resolution=0.005),
+    )
+    rec.value(
+        "t.part", [[5.0, 1.0]], rtol=0, atol=0, row=report.Comparison("Eq 8", "x", 1.0, part=(0, 1))
+    )
+    rec.value("t.holds", [True, True], row=report.Claim("Fig 6", "claim", "evidence"))
+    rec.value("t.dims", [0.3, 0.5], atol=0, row=report.Computed("Fig 2", "dims"))
+    verdicts = [r["verdict"] for r in rec.report]
+    assert verdicts == ["reproduced", "reproduced", "claim supported", report.COMPUTED]
+    assert rec.report[0]["ours"] == "1.004, 2"
+    with pytest.raises(ValueError, match="a cause must be given"):
+        rec.value("t.bad", 1.2, rtol=0, row=report.Comparison("T", "q", 1.0))
+    with pytest.raises(TypeError, match="a claim holds or not"):
+        rec.value("t.num", 0.7, atol=0, row=report.Claim("T", "c", "e"))
+    assert "t.bad" not in rec.values and "t.num" not in rec.values

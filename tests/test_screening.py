@@ -74,3 +74,26 @@ def test_bad_input_gets_clear_errors() -> None:
         screening.main_effects(np.array([[1.0], [1.0], [-1.0]]), [1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match=r"responses must have shape \(3, any\)"):
         screening.main_effects(np.array([[1.0], [-1.0], [1.0]]), [1.0, 2.0])
+
+
+def test_per_column_analyses_equal_the_single_column_ones() -> None:
+    effects = np.array([[100.0, 0.0], [0.5, 0.5], [-2.0, -0.3], [0.1, 0.002]])
+    lenths = screening.lenth_columns(effects, alpha=0.05)
+    assert lenths == [screening.lenth(effects[:, j], alpha=0.05) for j in range(2)]
+    summary = screening.lenth_summary(lenths, ("median_abs", "me"))
+    assert summary.shape == (2, 2)
+    np.testing.assert_allclose(summary[0], [1.25, 0.151])  # medians by hand
+    assert screening.dominant_columns(effects, 0.01).tolist() == [
+        [True, False],
+        [False, True],
+        [True, True],
+        [False, False],
+    ]  # column 1 judged against its own largest effect (0.5): all below 1 % of 100
+    active = screening.active_columns(effects, lenths)
+    assert active[:, 1].tolist() == lenths[1].active(effects[:, 1]).tolist()
+    sets = screening.factor_sets(screening.dominant_columns(effects), ["A", "B", "C", "D"])
+    assert sets == [frozenset({"A", "C"}), frozenset({"B", "C"})]
+    with pytest.raises(ValueError, match="not Lenth results"):
+        screening.lenth_summary(lenths, ("median",))
+    with pytest.raises(ValueError, match=r"mask must be \(3, outputs\)"):
+        screening.factor_sets(np.ones((4, 2)), ["A", "B", "C"])

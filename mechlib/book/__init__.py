@@ -6,6 +6,7 @@ re-executing them (the Makefile leaves it out of the notebooks' prerequisites).
 Modules
 -------
 artefacts   thesis artefacts ("Table 3", "Figs 6–7"): parsing, the thesis's order, section labels
+quoted      the numbers the prose quotes: every glue role must name a recorded value
 cells       per-cell rules: fold computation, remove bookkeeping, neutralise machine paths/warnings
 reportpage  the reproduction report page and its verdict summary
 diagrams    flow diagrams drawn with matplotlib (the thesis's Figs 1 and 9)

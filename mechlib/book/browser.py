@@ -22,7 +22,6 @@ Chromium is installed.
 from __future__ import annotations
 
 import argparse
-import json
 import re
 import shutil
 import subprocess
@@ -31,6 +30,8 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from html.parser import HTMLParser
 from pathlib import Path
+
+from mechlib.book import quoted
 
 BROWSERS = ("chromium", "chromium-browser", "google-chrome")
 FLAGS = (
@@ -48,7 +49,6 @@ FLAGS = (
 VIRTUAL_TIME_MS = 20000
 PAGE_TIMEOUT_S = 90
 WINDOW = "1400,3000"
-GLUE_ROLE = re.compile(r"\{glue(?::\w+)?\}`")
 RAW_MATH = re.compile(r"\\\(|\\\[")
 
 
@@ -120,13 +120,7 @@ _VOID = {
 
 def glue_roles(source: Path) -> int:
     """Number of ``{glue…}`` roles in a page source (markdown cells only, for a notebook)."""
-    text = source.read_text()
-    if source.suffix == ".ipynb":
-        cells = json.loads(text).get("cells", [])
-        text = "\n".join(
-            "".join(c.get("source", "")) for c in cells if c.get("cell_type") == "markdown"
-        )
-    return len(GLUE_ROLE.findall(text))
+    return len(quoted.glue_references(quoted.markdown_of(source)))
 
 
 def dom_problems(dom: str, expected_glue: int) -> list[str]:

@@ -4,7 +4,7 @@ The notebooks stay plain (no presentation tags to maintain by hand); the book bu
 rule, what each cell shows:
 
 * the ``parameters`` cell (and papermill's injected one) stays as it is: readers change it;
-* a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.report_row(...)``,
+* a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.text(...)``,
   ``rec.save()``, ``glue(..., display=False)`` and prints of what those return — is removed
   (``remove-cell``); its glued values still reach the text;
 * every other code cell is folded (``hide-input``): figures and tables stay visible;
@@ -35,7 +35,7 @@ KNOWN_WARNINGS = (
 )
 #: An absolute POSIX path with at least two components, not part of a longer word or URL.
 ABSOLUTE_PATH = re.compile(r"(?<![\w.~/:-])/(?:[\w.+-]+/)+[\w.+-]*")
-RECORDER_METHODS = frozenset({"value", "report_row", "save"})
+RECORDER_METHODS = frozenset({"value", "text", "save"})
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
 _FENCE = re.compile(r"^\s*(```|~~~)")
 

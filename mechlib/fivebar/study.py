@@ -26,6 +26,14 @@ N_MIN_POSTURES = kin.N_LEG_PARAMS
 #: Shared postures of the traditional method per D&C posture of one leg in the sensitivity sweep
 #: (the thesis's budgets, sec. 3.7 items 8 and 10: equal end-effector measurements).
 SHARED_PER_LEG_POSTURE = 2
+#: The thesis's claim "D&C gives the better calibration" holds when D&C's workspace RMS error is
+#: the smaller one in more than this share of the paired trials ...
+CLAIM_MIN_SHARE = 0.5
+#: ... and the Wilcoxon signed-rank test rejects "no difference" at this level (two-sided).
+CLAIM_MAX_P = 0.05
+#: Strategy keys of :func:`monte_carlo` and their names in tables.
+STRATEGIES = {"dc": "D&C", "trad": "traditional"}
+M_TO_UM = 1e6
 
 
 @dataclass(frozen=True)
@@ -189,14 +197,46 @@ def paired_verdict(a: np.ndarray, b: np.ndarray) -> dict[str, float]:
     return {"share_a_better": float(np.mean(a < b)), "p_value": p}
 
 
+def claim_holds(verdict: dict[str, float]) -> bool:
+    """Whether a :func:`paired_verdict` of D&C (``a``) against traditional (``b``) supports the
+    thesis's claim: D&C better in more than ``CLAIM_MIN_SHARE`` of the trials, at a Wilcoxon
+    p-value below ``CLAIM_MAX_P``."""
+    return bool(verdict["share_a_better"] > CLAIM_MIN_SHARE and verdict["p_value"] < CLAIM_MAX_P)
+
+
+def parameter_rms(errors: np.ndarray, per_parameter: bool = False) -> np.ndarray | float:
+    """Root mean square of identified − real parameters (trials, 12): over everything, or per
+    parameter (12,)."""
+    e = np.asarray(errors, dtype=float)
+    if e.ndim != 2:
+        raise ValueError(f"errors must be (trials, parameters), got shape {e.shape}")
+    return np.sqrt(np.mean(e**2, axis=0)) if per_parameter else float(np.sqrt(np.mean(e**2)))
+
+
+def summary(mc: dict[str, np.ndarray]) -> dict[str, dict[str, float]]:
+    """Per strategy (table name → row): workspace RMS mean and its 95 % CI [µm], parameter RMS
+    error over all twelve, median solve time [ms], from a :func:`monte_carlo` result."""
+    rows = {}
+    for s, label in STRATEGIES.items():
+        mean, lo, hi = mean_ci(mc[f"rms_{s}"])
+        rows[label] = {
+            "workspace RMS mean [µm]": M_TO_UM * mean,
+            "95 % CI low": M_TO_UM * lo,
+            "95 % CI high": M_TO_UM * hi,
+            "param. RMS error (all 12)": parameter_rms(mc[f"param_err_{s}"]),
+            "solve time median [ms]": 1e3 * float(np.median(mc[f"time_{s}"])),
+        }
+    return rows
+
+
 def measurement_counts(n_per_leg: int, n_shared: int) -> dict[str, dict[str, int]]:
     """End-effector measurements (points, 2 coordinates each) and joint readings per strategy.
 
     Divide and conquer measures one end-effector point and uses one joint reading per posture
     of each leg; the traditional method measures one point and reads both joints per shared
-    posture.
+    posture. ``total`` counts coordinates and readings (the cost of Table 8).
     """
-    return {
+    counts = {
         "dc": {
             "postures": 2 * n_per_leg,
             "ee_points": 2 * n_per_leg,
@@ -210,6 +250,9 @@ def measurement_counts(n_per_leg: int, n_shared: int) -> dict[str, dict[str, int
             "joint_readings": 2 * n_shared,
         },
     }
+    for c in counts.values():
+        c["total"] = c["ee_coordinates"] + c["joint_readings"]
+    return counts
 
 
 def sensitivity(
@@ -245,8 +288,8 @@ def sensitivity(
                 {
                     "sigma": float(s),
                     "n_per_leg": n,
-                    "rms_dc_um": 1e6 * float(mc["rms_dc"].mean()),
-                    "rms_trad_um": 1e6 * float(mc["rms_trad"].mean()),
+                    "rms_dc_um": M_TO_UM * float(mc["rms_dc"].mean()),
+                    "rms_trad_um": M_TO_UM * float(mc["rms_trad"].mean()),
                     "share_dc_better": verdict["share_a_better"],
                     "p_value": verdict["p_value"],
                     "failed_trials": len(mc["failed"]),

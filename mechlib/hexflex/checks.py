@@ -1,4 +1,5 @@
-"""Invariants of a HexFlex compliance: three-fold symmetry and Eq 8's zero pattern."""
+"""Invariants of a HexFlex compliance (three-fold symmetry, Eq 8's zero pattern, reciprocity)
+and the tilt-to-lift ratio that rules out a stage hung on three hinged links."""
 
 from __future__ import annotations
 
@@ -12,6 +13,15 @@ D1_COLS, D2_COLS = (0, 2, 4), (1, 3, 5)
 #: (row, column) of the zeros that the part's mirror symmetry about T1's axis adds: T1's loads
 #: (along x and z) cause no y translation nor θy rotation (y←T1D1, θy←T1D2).
 MIRROR_ZEROS: tuple[tuple[int, int], ...] = ((1, 0), (4, 1))
+#: Largest relative defects for the model's invariants to hold: far above the round-off of a
+#: direct solve in double precision, far below any modelling error.
+SYMMETRY_TOL = 1e-6
+ZERO_PATTERN_TOL = 1e-6
+RECIPROCITY_TOL = 1e-9
+#: θx / z of a rigid stage carried at three hinged joints on a circle of radius ρ, times ρ:
+#: lifting one joint by z₁ lifts the centre by z₁/3 and tilts the stage by z₁/(1.5 ρ).
+HINGED_TILT_FACTOR = 2.0
+MM_PER_M = 1e3
 
 
 def rotate_pose(pose: np.ndarray, angle_deg: float) -> np.ndarray:
@@ -49,3 +59,30 @@ def zero_pattern_defect(compliance: np.ndarray) -> float:
     zeros = [(i, j) for i in OUT_ROWS for j in D1_COLS]
     zeros += [(i, j) for i in IN_PLANE_ROWS for j in D2_COLS] + list(MIRROR_ZEROS)
     return float(max(abs(c[i, j]) / scale[i] for i, j in zeros))
+
+
+def reciprocity_defect(port_compliance: np.ndarray) -> float:
+    """max |P − Pᵀ| / max |P| of a square port compliance: 0 for a linear elastic structure
+    (Maxwell–Betti)."""
+    p = np.asarray(port_compliance, dtype=float)
+    if p.ndim != 2 or p.shape[0] != p.shape[1]:
+        raise ValueError(f"port_compliance must be a square matrix, got shape {p.shape}")
+    return float(np.abs(p - p.T).max() / np.abs(p).max())
+
+
+def tilt_per_lift(compliance: np.ndarray) -> float:
+    """θx←T1D2 / z←T1D2 [rad/m] of a compliance in Eq 8's order and units (µrad/N, µm/N)."""
+    c = np.asarray(compliance, dtype=float)
+    return float(c[3, 1] / c[2, 1])
+
+
+def max_hinged_radius(ratio: float) -> float:
+    """Largest joint radius ρ [mm] at which a stage on three hinged links reaches a tilt-to-lift
+    ``ratio`` [rad/m]: such a stage has θx / z ≤ ``HINGED_TILT_FACTOR`` / ρ.
+
+    A rigid stage settles in the plane of its three joints (120° apart): lifting one joint by z₁
+    lifts the centre by z₁/3 and tilts the stage by z₁/(1.5 ρ), so θx / z = 2/ρ.
+    """
+    if not ratio > 0:
+        raise ValueError(f"ratio must be > 0 rad/m, got {ratio}")
+    return HINGED_TILT_FACTOR / ratio * MM_PER_M

@@ -15,8 +15,9 @@ not a replacement for FE.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import scipy.linalg as sl
@@ -293,6 +294,11 @@ def hexflex_frame_compliance(
     return scale * (stage_compliance(g, young, poisson, shear, n_elements) @ actuator_wrenches(g))
 
 
+def compliance_maker(young: float, poisson: float) -> Callable[[geo.HexFlexGeometry], np.ndarray]:
+    """Geometry → :func:`hexflex_frame_compliance` for this material (the identification's)."""
+    return partial(hexflex_frame_compliance, young=young, poisson=poisson)
+
+
 def point_support_ratio(g: geo.HexFlexGeometry) -> float:
     """θx←T1D2 / z←T1D2 [rad/m] of the rigid body on six vertical point springs.
 
@@ -307,17 +313,6 @@ def point_support_ratio(g: geo.HexFlexGeometry) -> float:
     bound — a beam end's lift-rotation coupling could in principle act the other way.
     """
     return 2 * g.tab_outer / (g.beam_radius**2 + g.tab_half_width**2) * MM_PER_M
-
-
-def three_joint_radius(ratio: float) -> float:
-    """Largest radius ρ [mm] of three joints (120° apart) carrying a rigid stage at which lifting
-    one joint tilts the stage by at least ``ratio`` = θx / z [rad/m] of its centre's lift.
-
-    The stage settles in the plane of its joints: lifting one by z₁ lifts the centre by z₁/3 and
-    tilts it by z₁/(1.5 ρ), so θx / z = 2/ρ, and a ratio needs ρ ≤ 2 / ratio.
-    """
-    ratio = check_float("ratio [rad/m]", ratio, low=0.0, low_open=True)
-    return 2 / ratio * MM_PER_M
 
 
 def prefit(

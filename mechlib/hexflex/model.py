@@ -255,6 +255,18 @@ def model_maker(
     )
 
 
+def compliance_maker(
+    make: Callable[..., HexFlexModel],
+) -> Callable[[geo.HexFlexGeometry], np.ndarray]:
+    """Geometry → 6 × 6 compliance of the model that ``make`` builds (e.g. :func:`model_maker`'s
+    recipe): the FE side of :func:`mechlib.hexflex.identify.identify` and ``log_sensitivity``."""
+    return partial(_compliance_of, make)
+
+
+def _compliance_of(make: Callable[..., HexFlexModel], g: geo.HexFlexGeometry) -> np.ndarray:
+    return make(g).compliance()
+
+
 def _make_model(g: geo.HexFlexGeometry, *, mesh_fraction: float, **kwargs) -> HexFlexModel:
     return HexFlexModel(g, mesh_size=mesh_fraction * g.narrowest, **kwargs)
 
