@@ -9,7 +9,9 @@ factorisation (the tangent at u = 0 *is* the linear stiffness). By default it is
 method: a factorised tangent is kept while its (Anderson-accelerated) corrections converge fast
 enough, and refactorised when they slow down — 3 factorisations per validation run on the
 identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
-is assembled by :mod:`mechlib.hexflex.svk_tangent`. Q2 solid only.
+and the residual are computed by :mod:`mechlib.hexflex.svk_tangent` (the same numbers as SfePy's
+term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
+done once (:mod:`mechlib.hexflex.cholesky`). Q2 solid only.
 
 SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
 tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
@@ -43,7 +45,8 @@ INCREMENT_TOL = 1e-10
 #: Modified Newton keeps the factorised tangent while the corrections it gives, accelerated by
 #: Anderson mixing over the last ``ANDERSON_DEPTH`` of them, are predicted (from the last rate)
 #: to reach the tolerance within ``MAX_CHORD_STEPS`` more: one correction costs a residual and a
-#: back-substitution (≈ 0.3 s on the identified model), a new tangent ≈ 15 of them (measured).
+#: back-substitution, a new tangent its assembly and Cholesky, about six corrections' worth on
+#: the identified model (``make bench``). 4 and 8 were measured equally fast there.
 MAX_CHORD_STEPS = 8
 ANDERSON_DEPTH = 5
 METHODS: tuple[str, ...] = ("modified", "newton")
@@ -147,6 +150,9 @@ class NonlinearSolver:
 
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
         """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""
+        if self._batched is not None:  # the same vector as SfePy's, batched (make bench)
+            force = self._batched.internal_force(u)
+            return None if force is None else force - target
         try:
             return self.evaluator.eval_residual(u).copy() - target
         except ValueError:
@@ -175,7 +181,6 @@ class NonlinearSolver:
         tol: float = NEWTON_TOL,
         max_iterations: int = 40,
         method: str = "modified",
-        initial: np.ndarray | None = None,
     ) -> tuple[np.ndarray, SolveStats]:
         """Geometrically non-linear equilibrium under one actuator force vector (6,) [N].
 
@@ -223,15 +228,6 @@ class NonlinearSolver:
         load = model.load_vectors() @ f[0]
         scale = np.linalg.norm(load)
         u = np.zeros(model.n_dofs)
-        if initial is not None:
-            if steps != 1:
-                raise ValueError(f"initial needs steps = 1, got steps = {steps}")
-            u = np.array(initial, dtype=float)
-            if u.shape != (model.n_dofs,) or not np.all(np.isfinite(u)):
-                raise ValueError(
-                    f"initial must be a finite displacement vector of {model.n_dofs} DOFs, "
-                    f"got shape {u.shape}"
-                )
         stats = SolveStats()
         if scale == 0.0:
             return u, stats
