@@ -50,6 +50,7 @@ def test_measurement_counts_follow_the_per_posture_costs(n_per_leg: int, n_share
 
 
 def test_the_thesis_posture_ratio_measures_as_many_points() -> None:
-    # (Table 8's printed totals: tests/test_fivebar.py) the thesis's ratio n_shared = 2 n_per_leg measures the same number of end-effector points
+    # (Table 8's printed totals are tested in tests/test_fivebar.py.) The thesis's ratio
+    # n_shared = 2 n_per_leg measures the same number of end-effector points
     c = study.measurement_counts(18, 36)
     assert c["dc"]["ee_coordinates"] == c["trad"]["ee_coordinates"]
