@@ -1,4 +1,4 @@
-"""Designs of experiments: Plackett–Burman, uniform-design quality, random balanced designs.
+"""Designs of experiments: Plackett–Burman, uniform-design quality (CD²), random balanced designs.
 
 Designs are ``(runs, factors)`` arrays in coded units, every level in ``[-1, 1]``
 (Table 1 of the thesis: ±1 N maps to ±1).
@@ -16,6 +16,15 @@ from mechlib.params import check_int, check_matrix
 
 LEVEL_LIMIT = 1.0
 """Coded levels must lie in [-LEVEL_LIMIT, LEVEL_LIMIT] (Table 1: ±1 N)."""
+
+LEVEL_DECIMALS = 12
+"""Decimals to which two coded levels must agree to count as one level."""
+
+LEVEL_TOL = 1e-9
+"""Largest distance of a coded entry from its level on the equally spaced grid."""
+
+MAX_LEVELS = 1000
+"""Most levels a factor may have in :func:`uniform_design_points`."""
 
 
 def check_design(
@@ -150,17 +159,80 @@ def match_columns(full: object, target: object) -> dict[str, np.ndarray]:
     return {"columns": cols, "signs": signs, "rows": np.array(rows)}
 
 
-def to_unit_cube(design: object) -> np.ndarray:
-    """Map coded levels in [-1, 1] to the unit cube [0, 1] used by discrepancy measures."""
-    return (check_design(design) + LEVEL_LIMIT) / (2 * LEVEL_LIMIT)
+def uniform_design_points(design: object, n_levels: int | None = None) -> np.ndarray:
+    """Map coded levels to the unit cube as the uniform-design literature does.
 
+    A column with ``q`` equally spaced coded levels from -1 to 1 has level ``k`` (``k = 1..q``,
+    from the lowest) at ``(k - 1/2) / q``: the centre of the k-th of ``q`` equal cells of
+    [0, 1], as in the uniform-design tables (Fang, Li and Sudjianto, *Design and Modeling for
+    Computer Experiments*, 2006) and the UniDOE package. The ends -1 and +1 therefore go to
+    ``1/(2q)`` and ``1 - 1/(2q)``, not onto the faces of the cube. A one-level column (every
+    entry 0) goes to the centre, 1/2.
 
-def centered_l2_discrepancy(design: object) -> float:
-    """Centred L2 discrepancy (Hickernell 1998) of a coded design, via ``scipy.stats.qmc``.
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+        Coded design, every entry on the grid of ``q`` equally spaced levels of its column.
+    n_levels : int, optional
+        ``q`` for every column, 1 to ``MAX_LEVELS``. By default each column's ``q`` is its number
+        of distinct levels, which must then be exactly the equally spaced grid; give
+        ``n_levels`` when a column does not use every level.
 
-    The CD2 returned is the squared form that SciPy computes (``method="CD"``).
+    Returns
+    -------
+    numpy.ndarray, shape (runs, factors)
+        Points in (0, 1).
+
+    Raises
+    ------
+    ValueError
+        An entry is not one of the ``q`` equally spaced levels of its column.
     """
-    return float(qmc.discrepancy(to_unit_cube(design), method="CD"))
+    arr = check_design(design)
+    if n_levels is not None:
+        n_levels = check_int("n_levels", n_levels, low=1, high=MAX_LEVELS)
+    points = np.empty_like(arr)
+    for j, col in enumerate(arr.T):
+        q = n_levels or np.unique(np.round(col, LEVEL_DECIMALS)).size
+        grid = np.linspace(-LEVEL_LIMIT, LEVEL_LIMIT, q) if q > 1 else np.zeros(1)
+        k = np.abs(col[:, None] - grid[None, :]).argmin(axis=1)
+        off = np.abs(col - grid[k])
+        if off.max() > LEVEL_TOL:
+            raise ValueError(
+                f"design column {j} has level {col[off.argmax()]}, which is not one of {q} "
+                "equally spaced levels from -1 to 1 (give n_levels if the column does not use "
+                "every level)"
+            )
+        points[:, j] = (k + 0.5) / q
+    return points
+
+
+def centered_l2_discrepancy_squared(design: object, n_levels: int | None = None) -> float:
+    """Squared centred L2 discrepancy CD² (Hickernell 1998) of a coded design.
+
+    The levels are first placed at ``(k - 1/2)/q`` (:func:`uniform_design_points`), the
+    convention of the uniform-design tables, so the value can be compared with theirs; the
+    discrepancy itself is ``scipy.stats.qmc.discrepancy(..., method="CD")``, which returns the
+    square CD², not CD.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+        Coded design (see :func:`uniform_design_points`).
+    n_levels : int, optional
+        Number of levels of every column; inferred per column by default.
+
+    Returns
+    -------
+    float
+        CD² (the square; take the root for CD). Smaller is more uniform.
+
+    Raises
+    ------
+    ValueError
+        As :func:`uniform_design_points`.
+    """
+    return float(qmc.discrepancy(uniform_design_points(design, n_levels), method="CD"))
 
 
 def random_balanced_designs(design: object, n_designs: int, seed: int) -> np.ndarray:
@@ -192,5 +264,5 @@ def random_balanced_designs(design: object, n_designs: int, seed: int) -> np.nda
 def level_counts(design: object) -> dict[float, np.ndarray]:
     """Number of runs at each level, per column: ``{level: counts (factors,)}``."""
     arr = check_design(design)
-    levels = np.unique(np.round(arr, 12))
+    levels = np.unique(np.round(arr, LEVEL_DECIMALS))
     return {float(v): np.sum(np.isclose(arr, v), axis=0) for v in levels}

@@ -18,6 +18,9 @@ Sources (section numbers of ``shared/paper/thesis.md``):
 - Table 5 (sec. 2.6.5): validation errors of the meta-model over 1000 random runs.
 - Table 7 (sec. 3.7): nominal and disturbed ("real") 5R parameters.
 - Table 8 (sec. 3.7): regressor sizes and costs as printed.
+
+One block is not from the thesis: the CD² of the published uniform design of Table 4's size,
+U30(6^6), to compare Table 4 with (see ``UD_U30_6_6_CD2``).
 """
 
 from __future__ import annotations
@@ -178,6 +181,24 @@ TABLE4 = parse_printed(_TABLE4)
 TABLE4_DESIGN = TABLE4[:, :6]
 TABLE4_RESPONSES = TABLE4[:, 6:]
 TABLE4_RESPONSES_RESOLUTION = printed_resolution(_TABLE4)[:, 6:]
+
+# --- Not from the thesis: CD² of the published U30(6^6) uniform designs ---------------------
+# Source: the UniDOE package's repository (Zhang, Li and Quan; GitHub HAOYU-LI/UniDOE, commit
+# 4f59a40b5f7f287c79e46cdb83a6b5b2d535da60), file
+# "Advanced_Designs/CL2_nsq/Discrepancy/Dis_ CL2_30_6_6.csv" (the blank is in the file name):
+# "prev_dis" is the CD² that UniDOE's Eval(crit = "CL2") gives for the 30-run, 6-factor,
+# 6-level table of the Uniform Design website (www.cms-ud.com/UD/UniformDesign.html), which
+# that repository's Advanced_Designs/README.md and src/new_design_CLnsq.R say it re-evaluated;
+# "new_dis" is the CD² of UniDOE's re-optimised design of the same size. Both are squared CD
+# with levels at (k - 1/2)/q, printed to 16 decimals. (The website's table itself, stored there
+# as Advanced_Designs/CL2_nsq/CL2_30_6_6.csv, has the rows of Table 4 in the same order, level k
+# being the force -1 + 0.4 (k - 1) N; checked once by hand, not used here.)
+_UD_U30_6_6_CD2 = "0.0279400614207479 0.0277121676372092"
+UD_U30_6_6_CD2: float = float(parse_printed(_UD_U30_6_6_CD2)[0, 0])
+"""CD² of the Uniform Design website's U30(6^6) table (UniDOE's "prev_dis")."""
+UNIDOE_U30_6_6_CD2: float = float(parse_printed(_UD_U30_6_6_CD2)[0, 1])
+"""CD² of UniDOE's re-optimised U30(6^6) design ("new_dis")."""
+UD_U30_6_6_CD2_RESOLUTION: float = float(printed_resolution(_UD_U30_6_6_CD2)[0, 0])
 
 # --- Eq 8: S_T, "rows 1 to 3 µm/N and rows 3 to 6 µrad/N" (sic) -----------------------------
 _EQ8 = """

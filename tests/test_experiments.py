@@ -1,4 +1,4 @@
-"""Experiment runner: executors (in-process, dask), disk cache, failures and bad designs."""
+"""Experiment runner: executors (in-process, dask), disk cache, failures, bad designs; sweeps."""
 
 import concurrent.futures as cf
 
@@ -148,6 +148,37 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     np.testing.assert_allclose(out["crossing"][:2], [0.5, 0.5], rtol=1e-12)
     assert out["crossing"][2] == np.inf and not out["below_sweep"][2]
     assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
+
+
+def test_linearity_sweep_on_a_small_q2_model() -> None:
+    model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
+    f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
+    amps = np.array([0.1, 0.2, 0.4])
+    sweep = ex.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
+    np.testing.assert_array_equal(sweep["amplitude"], amps)
+    # the linear poses are the model's linear solve, exactly proportional to the amplitude
+    np.testing.assert_allclose(sweep["linear"], model.poses(amps[:, None] * f), rtol=1e-12)
+    np.testing.assert_allclose(sweep["linear"], amps[:, None] * sweep["linear"][0] / amps[0])
+    # the non-linear poses are the model's own non-linear solve (one load step below 1 N)
+    nl, stats = model.poses_nonlinear(amps[1] * f, steps=1)
+    np.testing.assert_allclose(sweep["nonlinear"][1], nl, rtol=1e-10)
+    assert sweep["iterations"][1] == sum(stats.iterations) >= 1
+    assert np.all(sweep["factorisations"] >= 1)
+    lin, nonlin = sweep["linear"], sweep["nonlinear"]
+    np.testing.assert_allclose(sweep["rel_pct"], 100 * np.abs(nonlin - lin) / np.abs(nonlin))
+    # the departure is of second order, so the relative error of the translations grows like
+    # the load: exponent 1 between consecutive amplitudes (measured within 0.015 of 1; a
+    # first-order departure would give 0, a third-order one 2)
+    exponent = ex.linear_range(amps, sweep["rel_pct"])["exponent"]
+    np.testing.assert_allclose(exponent[:, :3], 1.0, atol=0.05)
+    with pytest.raises(ValueError, match="direction must have a non-zero component"):
+        ex.linearity_sweep(model, np.zeros(6), amps)
+    with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
+        ex.linearity_sweep(model, f, [0.0, 1.0])
+    with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
+        ex.linearity_sweep(model, f, [60.0])
+    with pytest.raises(ValueError, match="steps must be"):
+        ex.linearity_sweep(model, f, amps, steps=0)
 
 
 def test_crossing_labels_say_above_below_or_where() -> None:

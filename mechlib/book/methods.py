@@ -72,7 +72,10 @@ FIG1 = MethodFigure(
         MethodStep(
             "Fine-tune with a space-filling design (uniform design)",
             (("published_doe", "Table 4"), ("virtual_experiments", "Table 4")),
-            ("mechlib.doe.centered_l2_discrepancy", "mechlib.hexflex.experiments.run_experiments"),
+            (
+                "mechlib.doe.centered_l2_discrepancy_squared",
+                "mechlib.hexflex.experiments.run_experiments",
+            ),
         ),
         MethodStep(
             "Construct the surrogate (meta-)model of the kinematics",
