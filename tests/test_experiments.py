@@ -154,7 +154,7 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
-    sweep = ex.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
+    sweep = linearity.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
     np.testing.assert_array_equal(sweep["amplitude"], amps)
     # the linear poses are the model's linear solve, exactly proportional to the amplitude
     np.testing.assert_allclose(sweep["linear"], model.poses(amps[:, None] * f), rtol=1e-12)
@@ -169,16 +169,16 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     # the departure is of second order, so the relative error of the translations grows like
     # the load: exponent 1 between consecutive amplitudes (measured within 0.015 of 1; a
     # first-order departure would give 0, a third-order one 2)
-    exponent = ex.linear_range(amps, sweep["rel_pct"])["exponent"]
+    exponent = linearity.linear_range(amps, sweep["rel_pct"])["exponent"]
     np.testing.assert_allclose(exponent[:, :3], 1.0, atol=0.05)
     with pytest.raises(ValueError, match="direction must have a non-zero component"):
-        ex.linearity_sweep(model, np.zeros(6), amps)
+        linearity.linearity_sweep(model, np.zeros(6), amps)
     with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
-        ex.linearity_sweep(model, f, [0.0, 1.0])
+        linearity.linearity_sweep(model, f, [0.0, 1.0])
     with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
-        ex.linearity_sweep(model, f, [60.0])
+        linearity.linearity_sweep(model, f, [60.0])
     with pytest.raises(ValueError, match="steps must be"):
-        ex.linearity_sweep(model, f, amps, steps=0)
+        linearity.linearity_sweep(model, f, amps, steps=0)
 
 
 def test_crossing_labels_say_above_below_or_where() -> None:
