@@ -103,6 +103,9 @@ def test_ctrl_c_in_a_task_stops_the_run_at_once(monkeypatch, tmp_path) -> None:
     with pytest.raises(KeyboardInterrupt):
         ex.run_experiments(SPEC, _design(600), cache_dir=tmp_path, progress=False)
     assert task.calls == 2  # the third task never ran
+    # ... and the first one's result was cached before the interrupt: a rerun resumes there
+    (cached,) = tmp_path.glob("*.npy")
+    np.testing.assert_array_equal(np.load(cached), 2.0 * _design(600)[:250])
 
 
 @pytest.mark.parametrize("error", [KeyboardInterrupt(), SystemExit(3)])

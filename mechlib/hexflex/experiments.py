@@ -15,6 +15,7 @@ process, so each worker pays the assembly and factorisation once.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import functools
 import hashlib
 import json
 from dataclasses import asdict, dataclass
@@ -88,9 +89,10 @@ def _limit_blas(threads: int) -> None:
 def worker_pool(workers: int) -> cf.ProcessPoolExecutor:
     """A process pool for FE experiments whose workers share the cores' BLAS threads.
 
-    Each worker's BLAS (SuperLU's factorisations run through it) gets ``cores // workers``
-    threads, at least one, instead of every core: ``workers`` processes that each start a
-    thread per core oversubscribe the machine.
+    Each worker's BLAS (the linear model's SuperLU factorisation and SfePy's assembly run
+    through it) gets ``cores // workers`` threads, at least one, instead of every core:
+    ``workers`` processes that each start a thread per core oversubscribe the machine. (The
+    non-linear solve's own kernels run on one thread in any case.)
 
     Parameters
     ----------
@@ -186,6 +188,12 @@ def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str
     return h.hexdigest()[:32]
 
 
+def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
+    """Save a finished task's poses (n_rows, 6) to ``path``; a failed task saves nothing."""
+    if not fut.cancelled() and fut.exception() is None:
+        np.save(path, np.asarray(fut.result(), dtype=float).reshape(n_rows, 6))
+
+
 def check_forces_design(design: object) -> np.ndarray:
     """A design of actuator forces: (n, 6) finite values within ±``MAX_FORCE_N`` N."""
     d = np.asarray(design, dtype=float)
@@ -248,7 +256,10 @@ def run_experiments(
         if path is not None and path.exists():
             out[rows], done[rows] = np.load(path), True
             continue
-        pending[pool.submit(_task, spec, kind, d[rows], steps)] = rows
+        fut = pool.submit(_task, spec, kind, d[rows], steps)
+        if path is not None:  # cached as soon as it is done: an interrupted run keeps it
+            fut.add_done_callback(functools.partial(_cache_result, path, len(rows)))
+        pending[fut] = rows
     failed: list[tuple[int, Exception]] = []
     bar = None
     if progress and pending:
@@ -264,8 +275,6 @@ def run_experiments(
             failed.append((int(rows[0]), err))
         else:
             out[rows], done[rows] = res, True
-            if cache_dir is not None:
-                np.save(cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", res)
         if bar is not None:
             bar.update()
     if bar is not None:
