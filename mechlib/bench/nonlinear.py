@@ -16,7 +16,7 @@ from mechlib.bench import REPO_ROOT, bench_geometry
 
 #: Non-linear validation runs timed in-process, and on the two-process pool.
 N_NONLINEAR_SERIAL = 2
-N_NONLINEAR_POOL = 4
+N_NONLINEAR_POOL = 8
 #: Runs on which the non-linear solvers are compared (the old one costs ≈ 45 s a run).
 N_SOLVER_RUNS = 3
 #: Right-preconditioned GMRES: iterations allowed, and the residual reduction asked for.

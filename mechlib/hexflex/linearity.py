@@ -12,6 +12,10 @@ import numpy as np
 from mechlib.hexflex.model import MAX_FORCE_N, HexFlexModel
 from mechlib.params import check_increasing, check_int, check_matrix
 
+#: The linear model's error budget of the chapter's sweep [%]: where the linear model stops
+#: being "accurate" (the largest pointwise error of a pose component).
+ERROR_BUDGET_PCT = 1.0
+
 
 def linearity_sweep(
     model: HexFlexModel, direction: object, amplitudes: object, steps: int = 1
@@ -63,7 +67,9 @@ def linearity_sweep(
     }
 
 
-def linear_range(amplitude: object, rel_pct: object, level: float = 1.0) -> dict[str, np.ndarray]:
+def linear_range(
+    amplitude: object, rel_pct: object, level: float = ERROR_BUDGET_PCT
+) -> dict[str, np.ndarray]:
     """Where the linear model's error passes a budget, and how fast it grows, per component.
 
     Between two consecutive amplitudes the error of each component is taken to follow a power
