@@ -25,7 +25,9 @@ class PatternCholesky:
     ----------
     matrix : scipy.sparse array or matrix (n, n)
         A matrix of the pattern, CSR with sorted column indices and a symmetric pattern (its
-        values are not used). Only its lower triangle is read by later factorisations.
+        values are not used). Later factorisations read its upper triangle: row j's entries
+        from column j on are column j of the lower triangle CHOLMOD takes (the same numbers
+        for a symmetric matrix, with no reordering).
 
     Notes
     -----
@@ -46,14 +48,14 @@ class PatternCholesky:
         n = m.shape[0]
         rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(m.indptr))
         cols = m.indices.astype(np.int64)
-        lower = np.flatnonzero(cols <= rows)
-        #: positions in the CSR data of the lower triangle, in CHOLMOD's column-major order
-        self._order = lower[np.lexsort((rows[lower], cols[lower]))]
+        #: positions in the CSR data of the upper triangle: row by row, columns increasing, it
+        #: is the lower triangle of the (symmetric) matrix in CHOLMOD's column-major order
+        self._order = np.flatnonzero(cols >= rows)
         self._indptr, self._indices = m.indptr.copy(), m.indices.copy()
         self.n = n
-        self._matrix = spmatrix(
-            m.data[self._order].astype(float), rows[self._order], cols[self._order], (n, n)
-        )
+        # row i of column j of the lower triangle is column i of row j of the upper one
+        upper_rows, upper_cols = rows[self._order], cols[self._order]
+        self._matrix = spmatrix(np.ones(len(self._order)), upper_cols, upper_rows, (n, n))
         cholmod.options["supernodal"] = 2  # always supernodal
         self._factor = cholmod.symbolic(self._matrix, uplo="L")
         self._generation = 0

@@ -147,6 +147,9 @@ class NonlinearSolver:
         self._batched = SVKTangent(model) if self.tangent == "batched" else None
         self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
         self._cholesky: PatternCholesky | None = None
+        if self._batched is not None and self.factorisation == "cholmod":
+            # the pattern's analysis (ordering, supernodes) once, before any run (≈ 2 s)
+            self._cholesky = PatternCholesky(self._batched.pattern())
 
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
         """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""

@@ -96,6 +96,13 @@ class SVKTangent:
         self._values: np.ndarray | None = None  # element matrices (n_el, 3 n_ep, 3 n_ep)
         self._dof_index: np.ndarray | None = None  # reduced DOF of each element force entry
 
+    def pattern(self) -> sp.csr_array:
+        """The CSR pattern of :meth:`matrix` (symmetric), with every stored value 1."""
+        shape = (self.n_dofs, self.n_dofs)
+        return sp.csr_array(
+            (np.ones(self.nnz), self._indices.copy(), self._indptr.copy()), shape=shape
+        )
+
     def matrix(self, u: object) -> sp.csr_array:
         """Reduced tangent stiffness [N/mm] at the reduced displacement vector ``u`` [mm].
 
@@ -174,12 +181,7 @@ class SVKTangent:
         ft = grad @ disp[:, None] + np.eye(3)  # Fᵀ: ft[..., j, c] = ∂x_c/∂X_j
         if np.any(np.linalg.det(ft) <= 0.0):
             return None
-        c = ft @ ft.swapaxes(-1, -2)  # right Cauchy–Green tensor FᵀF
-        strain = np.stack(
-            [0.5 * (c[..., i, i] - 1.0) for i in range(3)] + [c[..., i, j] for i, j in _SHEAR],
-            axis=-1,
-        )  # engineering Voigt strain (m, n_qp, 6)
-        stress = strain @ self._elastic.T  # second Piola–Kirchhoff, Voigt (m, n_qp, 6)
+        stress = self._stress(ft)  # second Piola–Kirchhoff, Voigt (m, n_qp, 6)
         # b[:, k, q, c, a]: Voigt strain increment k at point q per displacement (node a, comp. c)
         b = np.empty((m, 6, n_qp, 3, n_ep))
         for i in range(3):
@@ -190,15 +192,31 @@ class SVKTangent:
         return ft, stress, b
 
     def _element_forces(self, disp: np.ndarray, cells: slice) -> np.ndarray | None:
-        """Internal forces (m, 3 n_ep), DOFs ordered (component, node), or ``None``."""
-        kin = self._kinematics(disp, cells)
-        if kin is None:
+        """Internal forces (m, 3 n_ep), DOFs ordered (component, node), or ``None`` if an
+        element inverts: ``Σ_q w_q P_q ∇N_q`` with the first Piola–Kirchhoff stress P = F S
+        (the same as ``Σ_q w_q B_qᵀ S_q``, without forming B)."""
+        grad = self._grad[cells]
+        m, n_qp, _, n_ep = grad.shape
+        ft = grad @ disp[:, None] + np.eye(3)  # Fᵀ: ft[..., j, c] = ∂x_c/∂X_j
+        if np.any(np.linalg.det(ft) <= 0.0):
             return None
-        _, stress, b = kin
-        m, _, n_qp, _, n_ep = b.shape
-        ws = (stress * self._weight[cells][..., None]).swapaxes(1, 2)  # (m, 6, q): w S
-        # Σ_(k, q) w S_k B_k: the rows (k, q) of the stacked B, as in the tangent's product
-        return np.matmul(ws.reshape(m, 1, 6 * n_qp), b.reshape(m, 6 * n_qp, 3 * n_ep))[:, 0]
+        stress = self._stress(ft)
+        s = np.empty((m, n_qp, 3, 3))
+        for i in range(3):
+            s[..., i, i] = stress[..., i]
+        for k, (i, j) in enumerate(_SHEAR, start=3):
+            s[..., i, j] = s[..., j, i] = stress[..., k]
+        p = ft.swapaxes(-1, -2) @ (s * self._weight[cells][..., None, None])  # w F S
+        return np.einsum("mqcj,mqja->mca", p, grad, optimize=True).reshape(m, 3 * n_ep)
+
+    def _stress(self, ft: np.ndarray) -> np.ndarray:
+        """Second Piola–Kirchhoff stress (Voigt, (m, n_qp, 6)) from Fᵀ."""
+        c = ft @ ft.swapaxes(-1, -2)  # right Cauchy–Green tensor FᵀF
+        strain = np.stack(
+            [0.5 * (c[..., i, i] - 1.0) for i in range(3)] + [c[..., i, j] for i, j in _SHEAR],
+            axis=-1,
+        )  # engineering Voigt strain (m, n_qp, 6)
+        return strain @ self._elastic.T
 
     def _element_matrices(self, disp: np.ndarray, cells: slice, out: np.ndarray) -> None:
         """Write into ``out`` (m, 3 n_ep, 3 n_ep) the tangents, DOFs ordered (component, node),
