@@ -13,7 +13,7 @@
   validation runs of the DOE chapter's model: Newton with SfePy's tangent and SuperLU (the solver
   before issue 18), Newton with the batched-BLAS tangent (:mod:`mechlib.hexflex.svk_tangent`),
   modified Newton with SuperLU and modified Newton with CHOLMOD's Cholesky (the default,
-  :mod:`mechlib.hexflex.cholesky`), each timed on the same runs, with the largest relative pose
+  :mod:`mechlib.hexflex.factor`), each timed on the same runs, with the largest relative pose
   difference to the first; the cost of one tangent (SfePy's, batched), one factorisation (LU,
   Cholesky), one residual and one back-substitution; and the Newton–Krylov alternative: GMRES
   iterations, preconditioned by the factorised linear stiffness (a whole solve on the first run:
@@ -109,7 +109,8 @@ def factorisation_orderings() -> dict[str, float]:
     """Time SuperLU with the model's ordering and with SciPy's default on one stiffness."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.model import HexFlexModel, factorise
+    from mechlib.hexflex.factor import factorise
+    from mechlib.hexflex.model import HexFlexModel
 
     matrix = HexFlexModel(bench_geometry()).assembled_stiffness().tocsc()
     t0 = time.perf_counter()

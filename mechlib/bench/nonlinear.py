@@ -41,8 +41,7 @@ def _fastest(call) -> float:
 def nonlinear_options() -> dict[str, float]:
     """Time the non-linear solvers on the same validation runs, and their building blocks."""
 
-    from mechlib.hexflex.cholesky import PatternCholesky
-    from mechlib.hexflex.model import factorise
+    from mechlib.hexflex.factor import PatternCholesky, factorise
     from mechlib.hexflex.nonlinear import NonlinearSolver
 
     spec, _ = _chapter_spec()

@@ -11,7 +11,7 @@ enough, and refactorised when they slow down — 3 factorisations per validation
 identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
 and the residual are computed by :mod:`mechlib.hexflex.svk_tangent` (the same numbers as SfePy's
 term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
-done once (:mod:`mechlib.hexflex.cholesky`). Q2 solid only.
+done once (:mod:`mechlib.hexflex.factor`). Q2 solid only.
 
 SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
 tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
@@ -29,7 +29,7 @@ import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import problem as fe
-from mechlib.hexflex.cholesky import SOLVERS, PatternCholesky
+from mechlib.hexflex.factor import SOLVERS, PatternCholesky, factorise
 from mechlib.hexflex.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
 
@@ -124,7 +124,7 @@ class NonlinearSolver:
         same matrix to round-off (``make bench`` compares them).
     factorisation : {"cholmod", "superlu"}
         How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
-        (:class:`mechlib.hexflex.cholesky.PatternCholesky`, default; an indefinite tangent falls
+        (:class:`mechlib.hexflex.factor.PatternCholesky`, default; an indefinite tangent falls
         back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
     """
 
@@ -162,8 +162,6 @@ class NonlinearSolver:
             return None
 
     def _factorised_tangent(self, u: np.ndarray):
-        from mechlib.hexflex.model import factorise
-
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
         if self.tangent == "sfepy":

@@ -1,4 +1,8 @@
-"""Repeated sparse Cholesky factorisations of matrices that share one sparsity pattern.
+"""Sparse factorisations of the HexFlex's stiffness and tangent matrices.
+
+:func:`factorise` is SuperLU's LU with an ordering suited to FE matrices (the linear model's
+stiffness, and the fallback for a tangent that is not positive definite). :class:`PatternCholesky`
+does repeated Cholesky factorisations of matrices that share one sparsity pattern.
 
 The tangents of a non-linear solve all have the pattern of the mesh, so the fill-reducing
 ordering and the supernodal structure (CHOLMOD's symbolic analysis) are computed once and only
@@ -14,6 +18,7 @@ from collections.abc import Callable
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as sla
 
 SOLVERS: tuple[str, ...] = ("cholmod", "superlu")
 
@@ -85,8 +90,6 @@ class PatternCholesky:
         try:
             cholmod.numeric(self._matrix, self._factor)
         except ArithmeticError:  # not positive definite
-            from mechlib.hexflex.model import factorise
-
             self.fallbacks += 1
             return factorise(m).solve
 
@@ -101,3 +104,13 @@ class PatternCholesky:
             return np.array(x, dtype=float).ravel()
 
         return solve
+
+
+def factorise(matrix):
+    """Sparse LU of a symmetric stiffness or tangent matrix.
+
+    A minimum-degree ordering of A + Aᵀ with symmetric pivoting suits FE matrices: on a 172k-DOF
+    model it cuts SuperLU's fill 3× and its time 4–5× against the default column ordering
+    (measured in ``make bench``).
+    """
+    return sla.splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})

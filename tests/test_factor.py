@@ -6,7 +6,7 @@ import scipy.sparse as sp
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import nonlinear
-from mechlib.hexflex.cholesky import PatternCholesky
+from mechlib.hexflex.factor import PatternCholesky
 from mechlib.hexflex.model import HexFlexModel
 
 
