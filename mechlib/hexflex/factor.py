@@ -44,6 +44,7 @@ class PatternCholesky:
 
     def __init__(self, matrix: sp.sparray | sp.spmatrix) -> None:
         from cvxopt import cholmod, spmatrix
+        from cvxopt import matrix as dense
 
         m = sp.csr_array(matrix)
         if m.shape[0] != m.shape[1]:
@@ -63,6 +64,9 @@ class PatternCholesky:
         self._matrix = spmatrix(np.ones(len(self._order)), upper_cols, upper_rows, (n, n))
         cholmod.options["supernodal"] = 2  # always supernodal
         self._factor = cholmod.symbolic(self._matrix, uplo="L")
+        #: the values handed to CHOLMOD, and a writable numpy view of them
+        self._upper_buffer = dense(np.zeros(len(self._order)))
+        self._upper = np.asarray(self._upper_buffer)
         self._generation = 0
         self.fallbacks = 0
 
@@ -74,8 +78,6 @@ class PatternCholesky:
         ValueError
             If ``matrix`` does not have the pattern this object was built for.
         """
-        from cvxopt import cholmod
-        from cvxopt import matrix as dense
 
         m = sp.csr_array(matrix)
         if not (
@@ -84,14 +86,27 @@ class PatternCholesky:
             and np.array_equal(m.indices, self._indices)
         ):
             raise ValueError("matrix must have the sparsity pattern the factoriser was built for")
+        return self.factorise_values(m.data)
+
+    def factorise_values(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+        """:meth:`factorise` of the matrix of the pattern with stored values ``data`` (nnz,),
+        in the CSR order of the pattern given at construction (no pattern check)."""
+        from cvxopt import cholmod
+        from cvxopt import matrix as dense
+
+        data = np.asarray(data, dtype=float)
+        if data.shape != (len(self._indices),):
+            raise ValueError(f"data must have shape ({len(self._indices)},), got {data.shape}")
         self._generation += 1
         generation = self._generation
-        self._matrix.V = dense(np.ascontiguousarray(m.data[self._order], dtype=float))
+        np.take(data, self._order, out=self._upper[:, 0])  # into the cvxopt buffer
+        self._matrix.V = self._upper_buffer
         try:
             cholmod.numeric(self._matrix, self._factor)
         except ArithmeticError:  # not positive definite
             self.fallbacks += 1
-            return factorise(m).solve
+            shape = (self.n, self.n)
+            return factorise(sp.csr_array((data, self._indices, self._indptr), shape=shape)).solve
 
         def solve(rhs: np.ndarray) -> np.ndarray:
             if generation != self._generation:

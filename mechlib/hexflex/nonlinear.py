@@ -164,6 +164,8 @@ class NonlinearSolver:
     def _factorised_tangent(self, u: np.ndarray):
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
+        if self._batched is not None and self._cholesky is not None:  # the default
+            return self._cholesky.factorise_values(self._batched.values(u))
         if self.tangent == "sfepy":
             matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u))
             matrix.sort_indices()

@@ -121,6 +121,13 @@ class SVKTangent:
         ValueError
             If ``u`` has the wrong shape, holds NaN/inf or inverts an element (det F ≤ 0).
         """
+        shape = (self.n_dofs, self.n_dofs)
+        data = self.values(u)
+        return sp.csr_array((data, self._indices.copy(), self._indptr.copy()), shape=shape)
+
+    def values(self, u: object) -> np.ndarray:
+        """The stored values (nnz,) of :meth:`matrix` at ``u``, in the order of
+        :meth:`pattern` (no index arrays built: what a factoriser of the pattern needs)."""
         arr = self._check_state(u)
         nodal = np.vstack([arr.reshape(-1, 3), np.zeros((1, 3))])  # row −1: clamped nodes
         n_el, n_ep = self._nodes.shape
@@ -131,8 +138,7 @@ class SVKTangent:
                 cells = slice(start, start + self.chunk)
                 self._element_matrices(nodal[self._nodes[cells]], cells, self._values[cells])
         data = np.bincount(self._scatter, weights=self._values.ravel(), minlength=self.nnz + 1)
-        shape = (self.n_dofs, self.n_dofs)
-        return sp.csr_array((data[:-1], self._indices.copy(), self._indptr.copy()), shape=shape)
+        return data[:-1]
 
     def internal_force(self, u: object) -> np.ndarray | None:
         """Reduced internal force [N] at ``u`` [mm]: the TL residual without the load.
