@@ -7,6 +7,7 @@ import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import experiments as ex
+from mechlib.hexflex import linearity
 from mechlib.hexflex.nonlinear import ConvergenceError
 
 SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
@@ -102,6 +103,9 @@ def test_ctrl_c_in_a_task_stops_the_run_at_once(monkeypatch, tmp_path) -> None:
     with pytest.raises(KeyboardInterrupt):
         ex.run_experiments(SPEC, _design(600), cache_dir=tmp_path, progress=False)
     assert task.calls == 2  # the third task never ran
+    # ... and the first one's result was cached before the interrupt: a rerun resumes there
+    (cached,) = tmp_path.glob("*.npy")
+    np.testing.assert_array_equal(np.load(cached), 2.0 * _design(600)[:250])
 
 
 @pytest.mark.parametrize("error", [KeyboardInterrupt(), SystemExit(3)])
@@ -141,7 +145,7 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     # component 0: err = 2 a (passes 1 % at 0.5 N); 1: err = 4 a² (at 0.5 N, exponent 2);
     # 2: never reaches 1 %; 3: already above 1 % at the smallest amplitude
     err = np.column_stack([2 * amps, 4 * amps**2, 0.1 * amps, 20 * amps])
-    out = ex.linear_range(amps, err, level=1.0)
+    out = linearity.linear_range(amps, err, level=1.0)
     np.testing.assert_allclose(out["exponent"][:, 0], 1.0, rtol=1e-12)
     np.testing.assert_allclose(out["exponent"][:, 1], 2.0, rtol=1e-12)
     np.testing.assert_allclose(out["crossing"][:2], [0.5, 0.5], rtol=1e-12)
@@ -153,7 +157,7 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
-    sweep = ex.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
+    sweep = linearity.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
     np.testing.assert_array_equal(sweep["amplitude"], amps)
     # the linear poses are the model's linear solve, exactly proportional to the amplitude
     np.testing.assert_allclose(sweep["linear"], model.poses(amps[:, None] * f), rtol=1e-12)
@@ -168,16 +172,16 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     # the departure is of second order, so the relative error of the translations grows like
     # the load: exponent 1 between consecutive amplitudes (measured within 0.015 of 1; a
     # first-order departure would give 0, a third-order one 2)
-    exponent = ex.linear_range(amps, sweep["rel_pct"])["exponent"]
+    exponent = linearity.linear_range(amps, sweep["rel_pct"])["exponent"]
     np.testing.assert_allclose(exponent[:, :3], 1.0, atol=0.05)
     with pytest.raises(ValueError, match="direction must have a non-zero component"):
-        ex.linearity_sweep(model, np.zeros(6), amps)
+        linearity.linearity_sweep(model, np.zeros(6), amps)
     with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
-        ex.linearity_sweep(model, f, [0.0, 1.0])
+        linearity.linearity_sweep(model, f, [0.0, 1.0])
     with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):
-        ex.linearity_sweep(model, f, [60.0])
+        linearity.linearity_sweep(model, f, [60.0])
     with pytest.raises(ValueError, match="steps must be"):
-        ex.linearity_sweep(model, f, amps, steps=0)
+        linearity.linearity_sweep(model, f, amps, steps=0)
 
 
 def test_crossing_labels_say_above_below_or_where() -> None:
@@ -185,23 +189,23 @@ def test_crossing_labels_say_above_below_or_where() -> None:
         "crossing": np.array([np.inf, 0.1, 0.456]),
         "below_sweep": np.array([False, True, False]),
     }
-    assert ex.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
+    assert linearity.crossing_labels(lin, [0.1, 1.0, 3.0]) == ["> 3", "≤ 0.1", "0.46"]
 
 
 def test_linear_range_refuses_bad_input_by_name() -> None:
     err = np.ones((2, 6))
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2 strictly incr"):
-        ex.linear_range([1.0, 0.1], err)
+        linearity.linear_range([1.0, 0.1], err)
     with pytest.raises(ValueError, match=r"amplitude \[N\] must list at least 2"):
-        ex.linear_range([1.0], err[:1])
+        linearity.linear_range([1.0], err[:1])
     with pytest.raises(ValueError, match=r"amplitude \[N\] must be > 0"):
-        ex.linear_range([-0.1, 1.0], err)
+        linearity.linear_range([-0.1, 1.0], err)
     with pytest.raises(ValueError, match="rel_pct must be > 0"):
-        ex.linear_range([0.1, 1.0], np.zeros((2, 6)))
+        linearity.linear_range([0.1, 1.0], np.zeros((2, 6)))
     with pytest.raises(ValueError, match="rel_pct must have shape"):
-        ex.linear_range([0.1, 0.3, 1.0], err)
+        linearity.linear_range([0.1, 0.3, 1.0], err)
     with pytest.raises(ValueError, match="level"):
-        ex.linear_range([0.1, 1.0], err, level=0.0)
+        linearity.linear_range([0.1, 1.0], err, level=0.0)
 
 
 def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch) -> None:

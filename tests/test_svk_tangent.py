@@ -103,6 +103,22 @@ def test_the_comparison_catches_a_wrong_tangent(
     assert _relative_difference(stock, ev.eval_tangent_matrix(deformed)) > 1e-5
 
 
+def test_internal_force_equals_sfepys_residual(
+    model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
+) -> None:
+    ev = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    for u in (deformed, 5.0 * deformed):
+        ref = ev.eval_residual(u).copy()
+        ours = tangent.internal_force(u)
+        assert np.abs(ours - ref).max() <= SAME * np.abs(ref).max()
+    # the comparison can fail: a residual of another state is far off
+    assert np.abs(tangent.internal_force(0.5 * deformed) - ref).max() > 1e-3 * np.abs(ref).max()
+    assert not tangent.internal_force(np.zeros(model.n_dofs)).any()
+    assert tangent.internal_force(_turned_inside_out(model)) is None  # SfePy refuses it too
+    with pytest.raises(ValueError, match="u must have shape"):
+        tangent.internal_force(np.zeros(5))
+
+
 def test_tangent_is_bit_identical_between_calls_and_processes(
     model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
 ) -> None:

@@ -89,7 +89,7 @@ FIG1 = MethodFigure(
         MethodStep(
             "Verify the meta-model's accuracy with extra experiments",
             (("virtual_experiments", "Table 5"),),
-            ("mechlib.metamodel.error_metrics", "mechlib.hexflex.experiments.linearity_sweep"),
+            ("mechlib.metamodel.error_metrics", "mechlib.hexflex.linearity.linearity_sweep"),
         ),
     ),
 )

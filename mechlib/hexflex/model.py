@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 from functools import partial
 
 import numpy as np
-import scipy.sparse.linalg as sla
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import mesh as ms
 from mechlib.hexflex import problem as fe
+from mechlib.hexflex.factor import factorise
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.params import check_choice, check_float, check_matrix
 
@@ -287,13 +287,3 @@ def coarsening_for(coarse_widths: float, fraction: float) -> float:
     """The ``coarsening`` that makes the largest element ``coarse_widths`` narrowest flexure
     widths when the flexure elements are ``fraction`` of that width (at least 1)."""
     return max(1.0, coarse_widths / fraction)
-
-
-def factorise(matrix):
-    """Sparse LU of a symmetric stiffness or tangent matrix.
-
-    A minimum-degree ordering of A + Aᵀ with symmetric pivoting suits FE matrices: on a 172k-DOF
-    model it cuts SuperLU's fill 3× and its time 4–5× against the default column ordering
-    (measured in ``make bench``).
-    """
-    return sla.splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", options={"SymmetricMode": True})

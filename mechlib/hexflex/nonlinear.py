@@ -9,7 +9,9 @@ factorisation (the tangent at u = 0 *is* the linear stiffness). By default it is
 method: a factorised tangent is kept while its (Anderson-accelerated) corrections converge fast
 enough, and refactorised when they slow down — 3 factorisations per validation run on the
 identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
-is assembled by :mod:`mechlib.hexflex.svk_tangent`. Q2 solid only.
+and the residual are computed by :mod:`mechlib.hexflex.svk_tangent` (the same numbers as SfePy's
+term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
+done once (:mod:`mechlib.hexflex.factor`). Q2 solid only.
 
 SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
 tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
@@ -23,9 +25,11 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
+import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import problem as fe
+from mechlib.hexflex.factor import SOLVERS, PatternCholesky, factorise
 from mechlib.hexflex.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
 
@@ -41,7 +45,8 @@ INCREMENT_TOL = 1e-10
 #: Modified Newton keeps the factorised tangent while the corrections it gives, accelerated by
 #: Anderson mixing over the last ``ANDERSON_DEPTH`` of them, are predicted (from the last rate)
 #: to reach the tolerance within ``MAX_CHORD_STEPS`` more: one correction costs a residual and a
-#: back-substitution (≈ 0.3 s on the identified model), a new tangent ≈ 15 of them (measured).
+#: back-substitution, a new tangent its assembly and Cholesky, about six corrections' worth on
+#: the identified model (``make bench``). 4 and 8 were measured equally fast there.
 MAX_CHORD_STEPS = 8
 ANDERSON_DEPTH = 5
 METHODS: tuple[str, ...] = ("modified", "newton")
@@ -117,9 +122,15 @@ class NonlinearSolver:
         How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
         built here, ≈ 0.8 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
         same matrix to round-off (``make bench`` compares them).
+    factorisation : {"cholmod", "superlu"}
+        How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
+        (:class:`mechlib.hexflex.factor.PatternCholesky`, default; an indefinite tangent falls
+        back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
     """
 
-    def __init__(self, model: HexFlexModel, tangent: str = "batched") -> None:
+    def __init__(
+        self, model: HexFlexModel, tangent: str = "batched", factorisation: str = "cholmod"
+    ) -> None:
         if model.element != "q2":
             raise ValueError(
                 f"element must be 'q2' for the non-linear solve (SfePy's shell10x is linear), "
@@ -134,22 +145,37 @@ class NonlinearSolver:
         self.evaluator = tl_evaluator(model, register_svk_term())
         self.tangent = check_choice("tangent", tangent, TANGENTS)
         self._batched = SVKTangent(model) if self.tangent == "batched" else None
+        self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
+        self._cholesky: PatternCholesky | None = None
+        if self._batched is not None and self.factorisation == "cholmod":
+            # the pattern's analysis (ordering, supernodes) once, before any run (≈ 2 s)
+            self._cholesky = PatternCholesky(self._batched.pattern())
 
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
         """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""
+        if self._batched is not None:  # the same vector as SfePy's, batched (make bench)
+            force = self._batched.internal_force(u)
+            return None if force is None else force - target
         try:
             return self.evaluator.eval_residual(u).copy() - target
         except ValueError:
             return None
 
     def _factorised_tangent(self, u: np.ndarray):
-        from mechlib.hexflex.model import factorise
-
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
+        if self._batched is not None and self._cholesky is not None:  # the default
+            return self._cholesky.factorise_values(self._batched.values(u))
         if self.tangent == "sfepy":
-            return factorise(self.evaluator.eval_tangent_matrix(u).copy()).solve
-        return factorise(self._batched.matrix(u)).solve
+            matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u))
+            matrix.sort_indices()
+        else:
+            matrix = self._batched.matrix(u)
+        if self.factorisation == "superlu":
+            return factorise(matrix).solve
+        if self._cholesky is None:
+            self._cholesky = PatternCholesky(matrix)
+        return self._cholesky.factorise(matrix)
 
     def solve(
         self,

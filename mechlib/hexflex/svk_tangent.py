@@ -94,6 +94,14 @@ class SVKTangent:
         self._indptr, self._indices, self._scatter = _pattern(self._nodes, n_free)
         self.nnz = len(self._indices)
         self._values: np.ndarray | None = None  # element matrices (n_el, 3 n_ep, 3 n_ep)
+        self._dof_index: np.ndarray | None = None  # reduced DOF of each element force entry
+
+    def pattern(self) -> sp.csr_array:
+        """The CSR pattern of :meth:`matrix` (symmetric), with every stored value 1."""
+        shape = (self.n_dofs, self.n_dofs)
+        return sp.csr_array(
+            (np.ones(self.nnz), self._indices.copy(), self._indptr.copy()), shape=shape
+        )
 
     def matrix(self, u: object) -> sp.csr_array:
         """Reduced tangent stiffness [N/mm] at the reduced displacement vector ``u`` [mm].
@@ -113,11 +121,14 @@ class SVKTangent:
         ValueError
             If ``u`` has the wrong shape, holds NaN/inf or inverts an element (det F ≤ 0).
         """
-        arr = np.asarray(u, dtype=float)
-        if arr.shape != (self.n_dofs,):
-            raise ValueError(f"u must have shape ({self.n_dofs},) (n_dofs), got {arr.shape}")
-        if not np.all(np.isfinite(arr)):
-            raise ValueError("u must hold only finite numbers (found NaN or inf)")
+        shape = (self.n_dofs, self.n_dofs)
+        data = self.values(u)
+        return sp.csr_array((data, self._indices.copy(), self._indptr.copy()), shape=shape)
+
+    def values(self, u: object) -> np.ndarray:
+        """The stored values (nnz,) of :meth:`matrix` at ``u``, in the order of
+        :meth:`pattern` (no index arrays built: what a factoriser of the pattern needs)."""
+        arr = self._check_state(u)
         nodal = np.vstack([arr.reshape(-1, 3), np.zeros((1, 3))])  # row −1: clamped nodes
         n_el, n_ep = self._nodes.shape
         if self._values is None:  # kept: writing fresh pages costs ≈ 0.3 s a call
@@ -127,23 +138,56 @@ class SVKTangent:
                 cells = slice(start, start + self.chunk)
                 self._element_matrices(nodal[self._nodes[cells]], cells, self._values[cells])
         data = np.bincount(self._scatter, weights=self._values.ravel(), minlength=self.nnz + 1)
-        shape = (self.n_dofs, self.n_dofs)
-        return sp.csr_array((data[:-1], self._indices.copy(), self._indptr.copy()), shape=shape)
+        return data[:-1]
 
-    def _element_matrices(self, disp: np.ndarray, cells: slice, out: np.ndarray) -> None:
-        """Write into ``out`` (m, 3 n_ep, 3 n_ep) the tangents, DOFs ordered (component, node),
-        of the elements ``cells`` with nodal displacements ``disp`` (m, n_ep, 3)."""
-        grad, weight = self._grad[cells], self._weight[cells]
+    def internal_force(self, u: object) -> np.ndarray | None:
+        """Reduced internal force [N] at ``u`` [mm]: the TL residual without the load.
+
+        The same vector as SfePy's evaluator of the consistent term (``eval_residual``), from
+        the same strain and stress as :meth:`matrix`: ``Σ_q w_q B_qᵀ S_q`` per element, summed
+        into the free DOFs. Returns ``None`` where ``u`` inverts an element (det F ≤ 0), as
+        SfePy refuses such a state.
+
+        Parameters
+        ----------
+        u : array_like (n_dofs,)
+            Reduced displacements, finite.
+        """
+        arr = self._check_state(u)
+        nodal = np.vstack([arr.reshape(-1, 3), np.zeros((1, 3))])
+        n_el, n_ep = self._nodes.shape
+        if self._dof_index is None:
+            node = np.where(self._nodes >= 0, self._nodes, self.n_dofs // 3)
+            # (n_el, component, node) → reduced DOF, one bin past the end for clamped nodes
+            dof = 3 * node[:, None, :] + np.arange(3)[None, :, None]
+            self._dof_index = np.where(self._nodes[:, None, :] >= 0, dof, self.n_dofs).ravel()
+        forces = np.empty((n_el, 3 * n_ep))
+        with threadpool_limits(limits=1, user_api="blas"):
+            for start in range(0, n_el, self.chunk):
+                cells = slice(start, start + self.chunk)
+                out = self._element_forces(nodal[self._nodes[cells]], cells)
+                if out is None:
+                    return None
+                forces[cells] = out
+        return np.bincount(self._dof_index, weights=forces.ravel(), minlength=self.n_dofs + 1)[:-1]
+
+    def _check_state(self, u: object) -> np.ndarray:
+        arr = np.asarray(u, dtype=float)
+        if arr.shape != (self.n_dofs,):
+            raise ValueError(f"u must have shape ({self.n_dofs},) (n_dofs), got {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError("u must hold only finite numbers (found NaN or inf)")
+        return arr
+
+    def _kinematics(self, disp: np.ndarray, cells: slice):
+        """Fᵀ, the second Piola–Kirchhoff stress (Voigt) and B of the elements ``cells``, or
+        ``None`` if one inverts."""
+        grad = self._grad[cells]
         m, n_qp, _, n_ep = grad.shape
         ft = grad @ disp[:, None] + np.eye(3)  # Fᵀ: ft[..., j, c] = ∂x_c/∂X_j
         if np.any(np.linalg.det(ft) <= 0.0):
-            raise ValueError("u must not invert an element (det F <= 0 at a quadrature point)")
-        c = ft @ ft.swapaxes(-1, -2)  # right Cauchy–Green tensor FᵀF
-        strain = np.stack(
-            [0.5 * (c[..., i, i] - 1.0) for i in range(3)] + [c[..., i, j] for i, j in _SHEAR],
-            axis=-1,
-        )  # engineering Voigt strain (m, n_qp, 6)
-        stress = strain @ self._elastic.T  # second Piola–Kirchhoff, Voigt (m, n_qp, 6)
+            return None
+        stress = self._stress(ft)  # second Piola–Kirchhoff, Voigt (m, n_qp, 6)
         # b[:, k, q, c, a]: Voigt strain increment k at point q per displacement (node a, comp. c)
         b = np.empty((m, 6, n_qp, 3, n_ep))
         for i in range(3):
@@ -151,6 +195,44 @@ class SVKTangent:
         for k, (i, j) in enumerate(_SHEAR, start=3):
             np.multiply(grad[:, :, i, None, :], ft[:, :, j, :, None], out=b[:, k])
             b[:, k] += grad[:, :, j, None, :] * ft[:, :, i, :, None]
+        return ft, stress, b
+
+    def _element_forces(self, disp: np.ndarray, cells: slice) -> np.ndarray | None:
+        """Internal forces (m, 3 n_ep), DOFs ordered (component, node), or ``None`` if an
+        element inverts: ``Σ_q w_q P_q ∇N_q`` with the first Piola–Kirchhoff stress P = F S
+        (the same as ``Σ_q w_q B_qᵀ S_q``, without forming B)."""
+        grad = self._grad[cells]
+        m, n_qp, _, n_ep = grad.shape
+        ft = grad @ disp[:, None] + np.eye(3)  # Fᵀ: ft[..., j, c] = ∂x_c/∂X_j
+        if np.any(np.linalg.det(ft) <= 0.0):
+            return None
+        stress = self._stress(ft)
+        s = np.empty((m, n_qp, 3, 3))
+        for i in range(3):
+            s[..., i, i] = stress[..., i]
+        for k, (i, j) in enumerate(_SHEAR, start=3):
+            s[..., i, j] = s[..., j, i] = stress[..., k]
+        p = ft.swapaxes(-1, -2) @ (s * self._weight[cells][..., None, None])  # w F S
+        return np.einsum("mqcj,mqja->mca", p, grad, optimize=True).reshape(m, 3 * n_ep)
+
+    def _stress(self, ft: np.ndarray) -> np.ndarray:
+        """Second Piola–Kirchhoff stress (Voigt, (m, n_qp, 6)) from Fᵀ."""
+        c = ft @ ft.swapaxes(-1, -2)  # right Cauchy–Green tensor FᵀF
+        strain = np.stack(
+            [0.5 * (c[..., i, i] - 1.0) for i in range(3)] + [c[..., i, j] for i, j in _SHEAR],
+            axis=-1,
+        )  # engineering Voigt strain (m, n_qp, 6)
+        return strain @ self._elastic.T
+
+    def _element_matrices(self, disp: np.ndarray, cells: slice, out: np.ndarray) -> None:
+        """Write into ``out`` (m, 3 n_ep, 3 n_ep) the tangents, DOFs ordered (component, node),
+        of the elements ``cells`` with nodal displacements ``disp`` (m, n_ep, 3)."""
+        grad, weight = self._grad[cells], self._weight[cells]
+        m, n_qp, _, n_ep = grad.shape
+        kin = self._kinematics(disp, cells)
+        if kin is None:
+            raise ValueError("u must not invert an element (det F <= 0 at a quadrature point)")
+        _, stress, b = kin
         wdb = np.matmul(self._elastic, b.reshape(m, 6, -1)).reshape(b.shape)
         wdb *= weight[:, None, :, None, None]
         stack = (m, 6 * n_qp, 3 * n_ep)  # rows (k, q): the sum over points is the product's

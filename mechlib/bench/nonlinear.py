@@ -1,26 +1,6 @@
-"""Speed benchmarks (``make bench``): ratios measured in one run, never asserted in tests.
+"""Benchmarks of the non-linear HexFlex solve and of the DOE chapter's FE work (``make bench``).
 
-- Posture selection at 10⁴ candidates: the active-calibration search with determinant and
-  Woodbury updates against the same search scoring every candidate by an SVD.
-- HexFlex load cases: the factorise-once model (assembly and factorisation once, one
-  back-substitution per case) against SfePy's plain ``Problem.solve()`` per case, for the 1042
-  cases of Tables 2, 4 and 5 (12 + 30 + 1000). The plain path is timed on a few cases and its
-  per-case time multiplied by 1042 (it is the same work every case); the fast path is timed on
-  all 1042.
-- SuperLU ordering on the same stiffness: the minimum-degree ordering of A + Aᵀ with symmetric
-  pivoting that the model uses, against SciPy's default column ordering (COLAMD).
-- The non-linear solve (issue 18's options), on the first validation runs of the DOE chapter's
-  model: Newton with SfePy's tangent (the solver before), Newton with the batched-BLAS tangent
-  (:mod:`mechlib.hexflex.svk_tangent`) and modified Newton (the default), each timed on the same
-  runs, with the largest relative pose difference to the first; the cost of one tangent
-  (SfePy's, batched), one factorisation, one residual and one back-substitution; and the
-  Newton–Krylov alternative: GMRES iterations, preconditioned by the factorised linear
-  stiffness (a whole solve on the first run: Newton corrections, GMRES iterations, time).
-- The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
-  part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
-  per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
-  projected to the CI and full profiles' run counts (both run on two workers). The executed
-  notebooks' own papermill durations are printed when a build holds them.
+See :mod:`mechlib.bench` for what each section measures.
 """
 
 from __future__ import annotations
@@ -28,25 +8,15 @@ from __future__ import annotations
 import json
 import time
 from concurrent.futures import ProcessPoolExecutor
-from pathlib import Path
 
 import numpy as np
 
 from mechlib import published as pub
-from mechlib.fivebar import identification as idf
-from mechlib.fivebar import kinematics as kin
-from mechlib.fivebar import postures as ps
-from mechlib.fivebar.study import disc_grid
+from mechlib.bench import REPO_ROOT, bench_geometry
 
-N_CANDIDATES = 10_000
-N_SELECT = 18
-#: Load cases of Tables 2, 4 and 5 together (12 + 30 + 1000).
-N_LOAD_CASES = 1042
-#: Plain SfePy solves actually timed (each costs a full assembly and factorisation).
-N_PLAIN_TIMED = 3
 #: Non-linear validation runs timed in-process, and on the two-process pool.
 N_NONLINEAR_SERIAL = 2
-N_NONLINEAR_POOL = 4
+N_NONLINEAR_POOL = 8
 #: Runs on which the non-linear solvers are compared (the old one costs ≈ 45 s a run).
 N_SOLVER_RUNS = 3
 #: Right-preconditioned GMRES: iterations allowed, and the residual reduction asked for.
@@ -54,103 +24,43 @@ KRYLOV_MAXITER = 60
 KRYLOV_RTOL = 1e-3
 #: Newton corrections allowed to the Newton–Krylov solve.
 KRYLOV_NEWTON = 30
-REPO_ROOT = Path(__file__).resolve().parents[1]
+#: Calls of each building block timed; the fastest is reported (the machine is noisy).
+BLOCK_REPEATS = 3
 
 
-def _bench_geometry():
-    """A representative geometry of the size the hexflex notebook identifies (the defaults)."""
-    from mechlib.hexflex.geometry import HexFlexGeometry
-
-    return HexFlexGeometry()
-
-
-def posture_selection() -> dict[str, float]:
-    """Time both selection implementations on ~10⁴ candidates of leg 1 (greedy phase only)."""
-    phi1 = kin.leg_vector(pub.TABLE7_NOMINAL, 1)
-    miw = kin.miw_closed_form(phi1[0], phi1[1], abs(phi1[2]))
-    radius = 0.8 * miw["radius"]
-    spacing = radius * np.sqrt(np.pi / N_CANDIDATES)
-    cands = disc_grid((0.0, miw["cy"]), radius, spacing)
-    c1 = idf.identification_jacobian(cands, phi1, 1)
-    t0 = time.perf_counter()
-    fast = ps.select_active(c1, N_SELECT, max_passes=0)
-    t1 = time.perf_counter()
-    slow = ps.select_reference_svd(c1, N_SELECT, max_passes=0)
-    t2 = time.perf_counter()
-    return {
-        "candidates": len(cands),
-        "active_s": t1 - t0,
-        "svd_s": t2 - t1,
-        "speedup": (t2 - t1) / (t1 - t0),
-        "same_selection": float(np.array_equal(fast, slow)),
-    }
-
-
-def hexflex_load_cases() -> dict[str, float]:
-    """Time 1042 load cases on a representative HexFlex geometry (Q2, default mesh)."""
-    from mechlib.hexflex.model import HexFlexModel
-
-    g = _bench_geometry()
-    forces = np.random.default_rng(2010).uniform(-1.0, 1.0, (N_LOAD_CASES, 6))
-    t0 = time.perf_counter()
-    model = HexFlexModel(g)
-    t1 = time.perf_counter()
-    fast = model.poses(forces)
-    t2 = time.perf_counter()
-    plain = model.poses_plain_sfepy(forces[:N_PLAIN_TIMED])
-    t3 = time.perf_counter()
-    per_plain = (t3 - t2) / N_PLAIN_TIMED
-    fast_total = (t1 - t0) + (t2 - t1)
-    return {
-        "n_dofs": model.n_dofs,
-        **{f"{k}_s": v for k, v in model.timings.items()},
-        "per_case_s": (t2 - t1) / N_LOAD_CASES,
-        "fast_total_s": fast_total,
-        "plain_per_case_s": per_plain,
-        "plain_total_s": per_plain * N_LOAD_CASES,
-        "speedup": per_plain * N_LOAD_CASES / fast_total,
-        "max_rel_diff": float(
-            np.abs(plain - fast[:N_PLAIN_TIMED]).max() / np.abs(fast[:N_PLAIN_TIMED]).max()
-        ),
-    }
-
-
-def factorisation_orderings() -> dict[str, float]:
-    """Time SuperLU with the model's ordering and with SciPy's default on one stiffness."""
-    import scipy.sparse.linalg as sla
-
-    from mechlib.hexflex.model import HexFlexModel, factorise
-
-    matrix = HexFlexModel(_bench_geometry()).assembled_stiffness().tocsc()
-    t0 = time.perf_counter()
-    ours = factorise(matrix)
-    t1 = time.perf_counter()
-    default = sla.splu(matrix)
-    t2 = time.perf_counter()
-    return {
-        "n_dofs": matrix.shape[0],
-        "ours_s": t1 - t0,
-        "default_s": t2 - t1,
-        "speedup": (t2 - t1) / (t1 - t0),
-        "fill_ratio": (default.L.nnz + default.U.nnz) / (ours.L.nnz + ours.U.nnz),
-    }
+def _fastest(call) -> float:
+    """Fastest wall time [s] of ``BLOCK_REPEATS`` calls of ``call()``."""
+    times = []
+    for _ in range(BLOCK_REPEATS):
+        t0 = time.perf_counter()
+        call()
+        times.append(time.perf_counter() - t0)
+    return min(times)
 
 
 def nonlinear_options() -> dict[str, float]:
     """Time the non-linear solvers on the same validation runs, and their building blocks."""
 
-    from mechlib.hexflex.model import factorise
+    from mechlib.hexflex.factor import PatternCholesky, factorise
     from mechlib.hexflex.nonlinear import NonlinearSolver
 
     spec, _ = _chapter_spec()
     model = spec.build()
     runs = np.random.default_rng(2010).uniform(-1.0, 1.0, (N_SOLVER_RUNS, 6))
-    batched = NonlinearSolver(model)  # one batched tangent (≈ 0.5 GB) serves both methods
+    lu = NonlinearSolver(model, factorisation="superlu")
+    chol = NonlinearSolver(model)  # the default: batched tangent, CHOLMOD
     variants = {
-        "newton_sfepy": (NonlinearSolver(model, tangent="sfepy"), "newton"),
-        "newton_batched": (batched, "newton"),
-        "modified": (batched, "modified"),
+        "newton_sfepy": (
+            NonlinearSolver(model, tangent="sfepy", factorisation="superlu"),
+            "newton",
+        ),
+        "newton_batched": (lu, "newton"),
+        "modified_superlu": (lu, "modified"),
+        "modified": (chol, "modified"),
     }
+    # the pattern's Cholesky analysis, once per model, is not a run's cost; this equilibrium is
+    # where the building blocks are timed below
+    u_eq, _ = chol.solve(runs[0])
     out: dict[str, float] = {"n_dofs": model.n_dofs, "runs": N_SOLVER_RUNS}
     poses = {}
     for name, (solver, method) in variants.items():
@@ -164,29 +74,32 @@ def nonlinear_options() -> dict[str, float]:
     for name in variants:
         out[f"{name}_pose_rel_diff"] = float(np.abs(poses[name] - ref).max() / np.abs(ref).max())
         out[f"{name}_speedup"] = out["newton_sfepy_per_run_s"] / out[f"{name}_per_run_s"]
-    # building blocks at the linear solution of the first run
-    solver = variants["modified"][0]
+    # building blocks at the first run's equilibrium, each the fastest of BLOCK_REPEATS calls
+    solver = chol
     load = model.load_vectors() @ runs[0]
-    u = model.back_substitute(load)
-    t0 = time.perf_counter()
-    res = solver.evaluator.eval_residual(u).copy() - load
-    t1 = time.perf_counter()
-    sfepy_tangent = solver.evaluator.eval_tangent_matrix(u).copy()
-    t2 = time.perf_counter()
+    u = u_eq
+    res = solver._residual(u, load)
+    cholesky = PatternCholesky(solver._batched.pattern())
     tangent = solver._batched.matrix(u)
-    t3 = time.perf_counter()
-    factorise(tangent)
-    t4 = time.perf_counter()
-    model.back_substitute(res)
-    t5 = time.perf_counter()
-    out.update(
-        residual_s=t1 - t0,
-        sfepy_tangent_s=t2 - t1,
-        batched_tangent_s=t3 - t2,
-        factorisation_s=t4 - t3,
-        back_substitution_s=t5 - t4,
-        tangent_rel_diff=float(abs(sfepy_tangent - tangent).max() / abs(tangent).max()),
+    lu_factor = factorise(tangent)
+    blocks = {
+        "residual_s": lambda: solver.evaluator.eval_residual(u),
+        "batched_residual_s": lambda: solver._batched.internal_force(u),
+        "sfepy_tangent_s": lambda: solver.evaluator.eval_tangent_matrix(u),
+        "batched_tangent_s": lambda: solver._batched.matrix(u),
+        "factorisation_s": lambda: factorise(tangent),
+        "back_substitution_s": lambda: lu_factor.solve(res),
+        "cholesky_analysis_s": lambda: PatternCholesky(solver._batched.pattern()),
+        "cholesky_s": lambda: cholesky.factorise(tangent),
+    }
+    for name, call in blocks.items():
+        out[name] = _fastest(call)
+    solve = cholesky.factorise(tangent)
+    out["cholesky_solve_s"] = _fastest(lambda: solve(res))
+    out["tangent_rel_diff"] = float(
+        abs(solver.evaluator.eval_tangent_matrix(u) - tangent).max() / abs(tangent).max()
     )
+    out["cholesky_fallbacks"] = float(chol._cholesky.fallbacks + cholesky.fallbacks)
     # Newton–Krylov: every Newton correction by GMRES on the exact (batched) tangent, right-
     # preconditioned by the factorised linear stiffness (no factorisation after the model's)
     t0 = time.perf_counter()
@@ -267,7 +180,7 @@ def _chapter_spec():
     try:
         g, source = recorded_geometry(), "identified"
     except (FileNotFoundError, KeyError):
-        g, source = _bench_geometry(), "bench"
+        g, source = bench_geometry(), "bench"
     return ex.ModelSpec(g, mesh_size=DEFAULT_MESH_FRACTION * g.narrowest), source
 
 
@@ -352,80 +265,14 @@ def executed_durations() -> dict[str, dict[str, float]]:
     return out
 
 
-SECTIONS: tuple[str, ...] = ("postures", "load-cases", "orderings", "nonlinear", "chapter")
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Run the benchmarks (all, or ``--only`` some sections) and print their ratios."""
-    import argparse
-
-    from mechlib.hexflex.nonlinear import NEWTON_TOL
-
-    parser = argparse.ArgumentParser(prog="python -m mechlib.bench", description=__doc__)
-    parser.add_argument(
-        "--only", default=",".join(SECTIONS), help=f"comma-separated sections of {SECTIONS}"
-    )
-    only = [x for x in parser.parse_args(argv).only.split(",") if x]
-    unknown = sorted(set(only) - set(SECTIONS))
-    if unknown:
-        parser.error(f"--only: unknown sections {unknown}; allowed: {', '.join(SECTIONS)}")
-    if "postures" in only:
-        _print_postures()
-    if "load-cases" in only:
-        _print_load_cases()
-    if "orderings" in only:
-        _print_orderings()
-    if "nonlinear" in only:
-        _print_nonlinear(NEWTON_TOL)
-    if "chapter" in only:
-        _print_chapter()
-    return 0
-
-
-def _print_postures() -> None:
-    res = posture_selection()
-    print(f"posture selection, {res['candidates']} candidates, {N_SELECT} postures (greedy phase):")
-    print(f"  active (det + Woodbury updates): {res['active_s']:.3f} s")
-    print(f"  reference (SVD per candidate):   {res['svd_s']:.3f} s")
-    print(f"  speed-up: {res['speedup']:.0f}x; same selection: {bool(res['same_selection'])}")
-
-
-def _print_load_cases() -> None:
-    hx = hexflex_load_cases()
-    print(f"HexFlex, Q2, {hx['n_dofs']} DOFs, {N_LOAD_CASES} load cases:")
-    print(
-        f"  mesh {hx['mesh_s']:.2f} s, SfePy setup {hx['setup_s']:.2f} s, assembly "
-        f"{hx['assembly_s']:.2f} s, factorisation {hx['factorisation_s']:.2f} s"
-    )
-    print(
-        f"  per load case (batched back-substitution + pose fit): {1e3 * hx['per_case_s']:.2f} ms"
-    )
-    print(f"  factorise once, all cases: {hx['fast_total_s']:.1f} s")
-    print(
-        f"  plain Problem.solve() per case: {hx['plain_per_case_s']:.2f} s "
-        f"(timed on {N_PLAIN_TIMED}) -> {hx['plain_total_s'] / 60:.1f} min for {N_LOAD_CASES}"
-    )
-    print(
-        f"  speed-up: {hx['speedup']:.0f}x; largest relative pose difference "
-        f"{hx['max_rel_diff']:.1e}"
-    )
-
-
-def _print_orderings() -> None:
-    lu = factorisation_orderings()
-    print(f"SuperLU on the same stiffness ({lu['n_dofs']} DOFs):")
-    print(f"  minimum degree on A + A^T, symmetric mode: {lu['ours_s']:.2f} s")
-    print(f"  SciPy default (COLAMD):                    {lu['default_s']:.2f} s")
-    print(f"  speed-up: {lu['speedup']:.1f}x; fill ratio default/ours: {lu['fill_ratio']:.1f}")
-
-
-def _print_nonlinear(newton_tol: float) -> None:
+def print_nonlinear(newton_tol: float) -> None:
     nl = nonlinear_options()
     print(f"Non-linear solve, {nl['n_dofs']} DOFs, mean of the first {nl['runs']} validation runs:")
     for name, label in (
         ("newton_sfepy", "Newton, SfePy's tangent (before)"),
         ("newton_batched", "Newton, batched-BLAS tangent"),
-        ("modified", "modified Newton + Anderson (now)"),
+        ("modified_superlu", "modified Newton + Anderson, SuperLU"),
+        ("modified", "modified Newton + Anderson, CHOLMOD (now)"),
     ):
         print(
             f"  {label:34s} {nl[f'{name}_per_run_s']:5.1f} s/run, "
@@ -434,8 +281,15 @@ def _print_nonlinear(newton_tol: float) -> None:
             f"{nl[f'{name}_speedup']:.1f}x; pose vs before {nl[f'{name}_pose_rel_diff']:.1e}"
         )
     print(
-        f"  one residual {nl['residual_s']:.2f} s, back-substitution "
-        f"{nl['back_substitution_s']:.2f} s, factorisation {nl['factorisation_s']:.2f} s; "
+        f"  one tangent's factorisation: SuperLU LU {nl['factorisation_s']:.2f} s, CHOLMOD "
+        f"Cholesky {nl['cholesky_s']:.2f} s ({nl['factorisation_s'] / nl['cholesky_s']:.1f}x; "
+        f"its analysis, once per model, {nl['cholesky_analysis_s']:.2f} s); back-substitution "
+        f"{nl['back_substitution_s']:.3f} s / {nl['cholesky_solve_s']:.3f} s; tangents not "
+        f"positive definite (LU fallback): {nl['cholesky_fallbacks']:.0f}"
+    )
+    print(
+        f"  one residual: SfePy {nl['residual_s']:.3f} s, batched {nl['batched_residual_s']:.3f} s "
+        f"({nl['residual_s'] / nl['batched_residual_s']:.1f}x); "
         f"tangent: SfePy "
         f"{nl['sfepy_tangent_s']:.2f} s, batched {nl['batched_tangent_s']:.2f} s "
         f"({nl['sfepy_tangent_s'] / nl['batched_tangent_s']:.1f}x, max rel diff "
@@ -450,7 +304,7 @@ def _print_nonlinear(newton_tol: float) -> None:
     )
 
 
-def _print_chapter() -> None:
+def print_chapter() -> None:
     ch = chapter_timings()
     print(f"DOE chapter FE work, cold, {ch['geometry']} geometry, {ch['n_dofs']} DOFs:")
     print(f"  model build (mesh, assembly, factorisation): {ch['build_s']:.1f} s")
@@ -479,7 +333,3 @@ def _print_chapter() -> None:
             f"  executed notebooks, profile {profile} (papermill, as built; a warm FE cache "
             f"shortens virtual_experiments): {listed}"
         )
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
