@@ -46,6 +46,33 @@ def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> No
     assert ex.run_experiments(other, d, cache_dir=tmp_path, progress=False).any()
 
 
+def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, mechlib.hexflex.model, mechlib.hexflex.nonlinear; "
+        "print(' '.join(m.rsplit('.', 1)[1] + '.py' for m in sys.modules "
+        "if m.startswith('mechlib.hexflex.')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = set(out.stdout.split())
+    assert "factor.py" in loaded and "svk_tangent.py" in loaded
+    assert loaded <= set(ex._MODEL_SOURCES), sorted(loaded - set(ex._MODEL_SOURCES))
+
+
+def test_an_unreadable_cache_file_is_a_miss(tmp_path, monkeypatch) -> None:
+    monkeypatch.setattr(ex, "_task", FakeTask(fail_at=-1, error=RuntimeError("never raised")))
+    d = _design(5)
+    ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)
+    (cached,) = tmp_path.glob("*.npy")
+    cached.write_bytes(b"not an npy file")  # e.g. a write cut short
+    np.testing.assert_array_equal(
+        ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False), 2.0 * d
+    )
+    np.testing.assert_array_equal(np.load(cached), 2.0 * d)  # and it was written again
+
+
 def test_the_cache_is_keyed_by_the_model_code(tmp_path, monkeypatch) -> None:
     d = _design(5)
     ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False)

@@ -44,6 +44,8 @@ _MODEL_SOURCES: tuple[str, ...] = (
     "problem.py",
     "model.py",
     "nonlinear.py",
+    "svk_tangent.py",
+    "factor.py",
     "pose.py",
 )
 
@@ -189,9 +191,33 @@ def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str
 
 
 def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
-    """Save a finished task's poses (n_rows, 6) to ``path``; a failed task saves nothing."""
-    if not fut.cancelled() and fut.exception() is None:
-        np.save(path, np.asarray(fut.result(), dtype=float).reshape(n_rows, 6))
+    """Save a finished task's poses (n_rows, 6) to ``path``; a failed task saves nothing.
+
+    Written to a temporary file and renamed, so a reader never sees a partial file (the
+    done-callback and the collecting loop may both write it: same content, atomic rename).
+    """
+    import os
+    import tempfile
+
+    if fut.cancelled() or fut.exception() is not None:
+        return
+    res = np.asarray(fut.result(), dtype=float).reshape(n_rows, 6)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
+    with os.fdopen(fd, "wb") as fh:
+        np.save(fh, res)
+    os.replace(tmp, path)
+
+
+def _cached_result(path: Path, n_rows: int) -> np.ndarray | None:
+    """The cached poses (n_rows, 6) at ``path``, or ``None`` if absent or unreadable (then the
+    task runs again)."""
+    if not path.exists():
+        return None
+    try:
+        res = np.load(path)
+    except (OSError, ValueError, EOFError):
+        return None
+    return res if res.shape == (n_rows, 6) and np.all(np.isfinite(res)) else None
 
 
 def check_forces_design(design: object) -> np.ndarray:
@@ -253,8 +279,9 @@ def run_experiments(
     pool = executor if executor is not None else InProcessExecutor()
     for rows in chunks:
         path = cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy" if cache_dir else None
-        if path is not None and path.exists():
-            out[rows], done[rows] = np.load(path), True
+        cached = _cached_result(path, len(rows)) if path is not None else None
+        if cached is not None:
+            out[rows], done[rows] = cached, True
             continue
         fut = pool.submit(_task, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
@@ -275,6 +302,10 @@ def run_experiments(
             failed.append((int(rows[0]), err))
         else:
             out[rows], done[rows] = res, True
+            if cache_dir is not None:  # the callback may not have run yet (pool threads)
+                _cache_result(
+                    cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", len(rows), fut
+                )
         if bar is not None:
             bar.update()
     if bar is not None:

@@ -49,8 +49,8 @@ class PatternCholesky:
         m = sp.csr_array(matrix)
         if m.shape[0] != m.shape[1]:
             raise ValueError(f"matrix must be square, got shape {m.shape}")
-        if not m.has_sorted_indices:
-            raise ValueError("matrix must have sorted column indices (CSR)")
+        if not m.has_canonical_format:
+            raise ValueError("matrix must be CSR with sorted column indices and no duplicates")
         n = m.shape[0]
         rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(m.indptr))
         cols = m.indices.astype(np.int64)

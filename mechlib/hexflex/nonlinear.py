@@ -21,6 +21,8 @@ tangent; ``tests/test_hexflex.py`` checks it against finite differences of the r
 
 from __future__ import annotations
 
+import functools
+import threading
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -120,8 +122,9 @@ class NonlinearSolver:
         A Q2 model with ``body_factor`` 1 (its factorised stiffness is the first tangent).
     tangent : {"batched", "sfepy"}
         How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
-        built here, ≈ 0.8 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
-        same matrix to round-off (``make bench`` compares them).
+        built here, ≈ 0.6 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
+        same matrix to round-off (``make bench`` compares them). The choice also sets the
+        residual: ``SVKTangent.internal_force`` or SfePy's (equal to round-off).
     factorisation : {"cholmod", "superlu"}
         How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
         (:class:`mechlib.hexflex.factor.PatternCholesky`, default; an indefinite tangent falls
@@ -142,17 +145,26 @@ class NonlinearSolver:
                 f"got {model.body_factor:g}"
             )
         self.model = model
-        self.evaluator = tl_evaluator(model, register_svk_term())
         self.tangent = check_choice("tangent", tangent, TANGENTS)
         self._batched = SVKTangent(model) if self.tangent == "batched" else None
         self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
         self._cholesky: PatternCholesky | None = None
+        self._lock = threading.Lock()
         if self._batched is not None and self.factorisation == "cholmod":
             # the pattern's analysis (ordering, supernodes) once, before any run (≈ 2 s)
             self._cholesky = PatternCholesky(self._batched.pattern())
 
+    @functools.cached_property
+    def evaluator(self):
+        """SfePy's evaluator of the consistent TL term (built on first use: the default solver
+        needs it only for comparisons)."""
+        return tl_evaluator(self.model, register_svk_term())
+
     def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
-        """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")."""
+        """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")
+        or ``u`` is not finite."""
+        if not np.all(np.isfinite(u)):
+            return None
         if self._batched is not None:  # the same vector as SfePy's, batched (make bench)
             force = self._batched.internal_force(u)
             return None if force is None else force - target
@@ -167,7 +179,7 @@ class NonlinearSolver:
         if self._batched is not None and self._cholesky is not None:  # the default
             return self._cholesky.factorise_values(self._batched.values(u))
         if self.tangent == "sfepy":
-            matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u))
+            matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u), copy=True)
             matrix.sort_indices()
         else:
             matrix = self._batched.matrix(u)
@@ -220,6 +232,12 @@ class NonlinearSolver:
             under a fresh Newton correction; names the force vector, the load step and the last
             relative residual.
         """
+        with self._lock:  # one solve at a time: the tangent buffers and the factor are shared
+            return self._solve(forces, steps, tol, max_iterations, method)
+
+    def _solve(
+        self, forces: object, steps: int, tol: float, max_iterations: int, method: str
+    ) -> tuple[np.ndarray, SolveStats]:
         model = self.model
         f = model.check_forces(forces)
         if f.shape[0] != 1:
