@@ -207,6 +207,11 @@ def uniform_design_points(design: object, n_levels: int | None = None) -> np.nda
     return points
 
 
+#: Table 4 counts as a uniform design when it is balanced and fewer than this share of random
+#: balanced designs with its levels are at least as uniform (CD², :func:`random_balanced_designs`).
+UNIFORM_SHARE_MAX = 0.01
+
+
 def centered_l2_discrepancy_squared(design: object, n_levels: int | None = None) -> float:
     """Squared centred L2 discrepancy CD² (Hickernell 1998) of a coded design.
 

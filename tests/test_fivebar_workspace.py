@@ -62,6 +62,8 @@ def test_working_side_share_counts_the_reachable_points_on_the_centres_side() ->
     below = ws.working_side_share(field, (0.0, 0.5 * MIW["y_parallel"]))
     below_count = (field.reachable & (field.parallel < 0)).mean()
     assert below["working_side"] == pytest.approx(below_count, abs=0)
+    # no reachable grid node lies exactly on the singularity, so the two sides fill the reach
+    assert share["working_side"] + below["working_side"] == pytest.approx(share["reachable"])
 
 
 def test_leg_chain_closes_the_vector_loop_of_eq22() -> None:

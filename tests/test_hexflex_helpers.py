@@ -4,7 +4,6 @@ geometry → compliance makers of the identification."""
 import numpy as np
 import pytest
 
-from mechlib import published as pub
 from mechlib.hexflex import checks, frame, model
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.geometry import TAB_ANGLES_DEG
@@ -19,8 +18,11 @@ def test_reciprocity_defect_of_a_symmetric_and_a_skewed_matrix() -> None:
         checks.reciprocity_defect(np.ones((2, 3)))
 
 
-def test_tilt_per_lift_of_eq8() -> None:
-    assert checks.tilt_per_lift(pub.EQ8_ST) == pub.EQ8_ST[3, 1] / pub.EQ8_ST[2, 1]
+def test_tilt_per_lift_reads_thx_and_z_under_t1d2() -> None:
+    c = np.zeros((6, 6))
+    c[2, 1], c[3, 1] = 3.0, 6.0  # z←T1D2 = 3 µm/N, θx←T1D2 = 6 µrad/N: 2 rad/m
+    c[2, 0], c[3, 0] = 1.0, 9.0  # the T1D1 column must not be read
+    assert checks.tilt_per_lift(c) == 2.0
 
 
 def test_the_hinged_link_bound_from_the_plane_through_three_joints() -> None:

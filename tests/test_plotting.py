@@ -152,8 +152,9 @@ def test_every_public_figure_function_is_covered() -> None:
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_returns_a_new_figure(name: str) -> None:
     call, _ = CASES[name]
+    before = set(plt.get_fignums())
     fig = call()
-    assert isinstance(fig, Figure)
+    assert isinstance(fig, Figure) and fig.number not in before
     assert any(ax.has_data() for ax in fig.axes)
 
 

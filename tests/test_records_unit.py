@@ -201,7 +201,8 @@ def test_bad_glue_and_text_are_refused() -> None:
         rec.text("t", "θx", of="nowhere")
     with pytest.raises(ValueError, match="str or NaN"):
         rec.text("t", 0.5, why="a number must not dodge its record")
-    assert rec.text("t", float("nan"), why="not computed in this run") != 0
+    assert np.isnan(rec.text("t", float("nan"), why="not computed in this run"))
+    assert np.isnan(pasted["t"])
     assert list(pasted) == ["v0", "t"] and "w" not in rec.values and "u" not in rec.values
 
 

@@ -18,6 +18,8 @@ MIRROR_ZEROS: tuple[tuple[int, int], ...] = ((1, 0), (4, 1))
 SYMMETRY_TOL = 1e-6
 ZERO_PATTERN_TOL = 1e-6
 RECIPROCITY_TOL = 1e-9
+#: Largest pose → forces → pose error [µm, µrad] of the FE model's own inverse (round-off).
+ROUNDTRIP_TOL = 1e-6
 #: θx / z of a rigid stage carried at three hinged joints on a circle of radius ρ, times ρ:
 #: lifting one joint by z₁ lifts the centre by z₁/3 and tilts the stage by z₁/(1.5 ρ).
 HINGED_TILT_FACTOR = 2.0
