@@ -39,6 +39,9 @@ def test_solves_and_refactorises_with_the_pattern_kept() -> None:
     # the values alone, in the pattern's order, give the same factorisation
     x2 = solve2(b)
     np.testing.assert_array_equal(chol.factorise_values(m2.data)(b), x2)
+    # ... and so does its upper triangle (column ≥ row) alone, in CSR order
+    rows = np.repeat(np.arange(m2.shape[0]), np.diff(m2.indptr))
+    np.testing.assert_array_equal(chol.factorise_upper(m2.data[m2.indices >= rows])(b), x2)
 
 
 def test_an_overwritten_factor_refuses_to_solve() -> None:
@@ -64,6 +67,11 @@ def test_an_indefinite_matrix_falls_back_to_lu() -> None:
     y = chol.factorise(m)(b)
     np.testing.assert_allclose(m @ y, b, rtol=1e-12, atol=1e-12)
     np.testing.assert_array_equal(lu_solve(b), x)
+    # the fallback rebuilds the whole matrix from the upper triangle it was given
+    rows = np.repeat(np.arange(m.shape[0]), np.diff(indefinite.indptr))
+    upper = indefinite.data[indefinite.indices >= rows]
+    np.testing.assert_allclose(chol.factorise_upper(upper)(b), x, rtol=1e-12, atol=1e-12)
+    assert chol.fallbacks == 2
 
 
 def test_bad_input_gets_clear_errors() -> None:
@@ -73,6 +81,8 @@ def test_bad_input_gets_clear_errors() -> None:
         chol.factorise(_spd(seed=1))
     with pytest.raises(ValueError, match="data must have shape"):
         chol.factorise_values(m.data[:-1])
+    with pytest.raises(ValueError, match="upper must have shape"):
+        chol.factorise_upper(m.data)
     with pytest.raises(ValueError, match="rhs must have shape"):
         chol.factorise(m)(np.ones(3))
     dup = sp.csr_array((np.ones(2), np.array([0, 0]), np.array([0, 2, 2])), shape=(2, 2))

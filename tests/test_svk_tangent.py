@@ -10,6 +10,7 @@ import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import nonlinear
+from mechlib.hexflex.factor import PatternCholesky
 from mechlib.hexflex.model import HexFlexModel
 from mechlib.hexflex.svk_tangent import SVKTangent
 
@@ -117,6 +118,26 @@ def test_internal_force_equals_sfepys_residual(
     assert tangent.internal_force(_turned_inside_out(model)) is None  # SfePy refuses it too
     with pytest.raises(ValueError, match="u must have shape"):
         tangent.internal_force(np.zeros(5))
+
+
+def test_upper_values_are_the_half_a_cholesky_reads(
+    model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
+) -> None:
+    full = tangent.matrix(deformed)
+    upper = tangent.upper_values(deformed)
+    rows = np.repeat(np.arange(model.n_dofs), np.diff(full.indptr))
+    half = full.indices >= rows  # column ≥ row, in CSR order
+    assert upper.shape == (int(half.sum()),)
+    np.testing.assert_allclose(upper, full.data[half], rtol=0, atol=SAME * abs(full.data).max())
+    # the factoriser of the pattern takes them as the matrix: the same solution
+    chol = PatternCholesky(tangent.pattern())
+    b = np.linspace(-1.0, 1.0, model.n_dofs)
+    x = chol.factorise_upper(upper)(b)
+    x_full = chol.factorise(full)(b)
+    np.testing.assert_allclose(x, x_full, rtol=0, atol=1e-9 * np.abs(x_full).max())
+    assert np.linalg.norm(full @ x - b) < 1e-7 * np.linalg.norm(b)
+    # ... and the comparison can fail: the other state's half differs
+    assert np.abs(tangent.upper_values(0.5 * deformed) - upper).max() > 1e-4 * abs(upper).max()
 
 
 def test_tangent_is_bit_identical_between_calls_and_processes(

@@ -82,20 +82,22 @@ def nonlinear_options() -> dict[str, float]:
     res = solver._residual(u, load)
     cholesky = PatternCholesky(solver._batched.pattern())
     tangent = solver._batched.matrix(u)
+    upper = solver._batched.upper_values(u)
     lu_factor = factorise(tangent)
     blocks = {
         "residual_s": lambda: solver.evaluator.eval_residual(u),
         "batched_residual_s": lambda: solver._batched.internal_force(u),
         "sfepy_tangent_s": lambda: solver.evaluator.eval_tangent_matrix(u),
         "batched_tangent_s": lambda: solver._batched.matrix(u),
+        "upper_tangent_s": lambda: solver._batched.upper_values(u),  # as the solver does
         "factorisation_s": lambda: factorise(tangent),
         "back_substitution_s": lambda: lu_factor.solve(res),
         "cholesky_analysis_s": lambda: PatternCholesky(solver._batched.pattern()),
-        "cholesky_s": lambda: cholesky.factorise_values(tangent.data),  # as the solver does
+        "cholesky_s": lambda: cholesky.factorise_upper(upper),  # as the solver does
     }
     for name, call in blocks.items():
         out[name] = _fastest(call)
-    solve = cholesky.factorise_values(tangent.data)
+    solve = cholesky.factorise_upper(upper)
     out["cholesky_solve_s"] = _fastest(lambda: solve(res))
     out["tangent_rel_diff"] = float(
         abs(solver.evaluator.eval_tangent_matrix(u) - tangent).max() / abs(tangent).max()
@@ -297,7 +299,8 @@ def print_nonlinear(newton_tol: float) -> None:
         f"tangent: SfePy "
         f"{nl['sfepy_tangent_s']:.2f} s, batched {nl['batched_tangent_s']:.2f} s "
         f"({nl['sfepy_tangent_s'] / nl['batched_tangent_s']:.1f}x, max rel diff "
-        f"{nl['tangent_rel_diff']:.0e})"
+        f"{nl['tangent_rel_diff']:.0e}); its upper triangle alone (what the Cholesky reads) "
+        f"{nl['upper_tangent_s']:.2f} s"
     )
     print(
         f"  Newton-Krylov (GMRES on the exact tangent, preconditioned by K_lin, to "

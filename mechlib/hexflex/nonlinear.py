@@ -122,7 +122,7 @@ class NonlinearSolver:
         A Q2 model with ``body_factor`` 1 (its factorised stiffness is the first tangent).
     tangent : {"batched", "sfepy"}
         How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
-        built here, ≈ 0.6 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
+        built here, ≈ 0.4 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
         same matrix to round-off (``make bench`` compares them). The choice also sets the
         residual: ``SVKTangent.internal_force`` or SfePy's (equal to round-off).
     factorisation : {"cholmod", "superlu"}
@@ -177,7 +177,7 @@ class NonlinearSolver:
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
         if self._batched is not None and self._cholesky is not None:  # the default
-            return self._cholesky.factorise_values(self._batched.values(u))
+            return self._cholesky.factorise_upper(self._batched.upper_values(u))
         if self.tangent == "sfepy":
             matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u), copy=True)
             matrix.sort_indices()
