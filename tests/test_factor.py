@@ -39,9 +39,15 @@ def test_solves_and_refactorises_with_the_pattern_kept() -> None:
     # the values alone, in the pattern's order, give the same factorisation
     x2 = solve2(b)
     np.testing.assert_array_equal(chol.factorise_values(m2.data)(b), x2)
-    # ... and so does its upper triangle (column ≥ row) alone, in CSR order
+    # ... and so does its upper triangle (column ≥ row) alone, in CSR order, after another
+    # matrix was factorised (its numbers must not linger in the buffer)
+    chol.factorise(m)
     rows = np.repeat(np.arange(m2.shape[0]), np.diff(m2.indptr))
-    np.testing.assert_array_equal(chol.factorise_upper(m2.data[m2.indices >= rows])(b), x2)
+    upper = m2.data[m2.indices >= rows]
+    np.testing.assert_array_equal(chol.factorise_upper(upper)(b), x2)
+    # the upper triangle is what is read: twice the numbers, half the solution
+    np.testing.assert_allclose(chol.factorise_upper(2.0 * upper)(b), x2 / 2, rtol=1e-12)
+    assert chol.fallbacks == 0
 
 
 def test_an_overwritten_factor_refuses_to_solve() -> None:

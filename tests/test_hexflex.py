@@ -270,6 +270,26 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
         nonlinear.tl_evaluator(shell, "dw_tl_he_svk")
 
 
+def test_a_load_step_the_modified_method_gives_up_is_solved_by_newton(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
+    big = 3.0 * np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])
+    solver = nonlinear.NonlinearSolver(model)
+    u_newton, newton = solver.solve(big, method="newton")
+    u_modified, modified = solver.solve(big)
+    assert modified.restarts == 0 and sum(modified.factorisations) > 1
+    # a budget of one factorisation is too small here: the step is given up, and Newton's
+    # solve of it (from the step's start) is what comes back
+    monkeypatch.setattr(nonlinear, "MODIFIED_MAX_FACTORISATIONS", 1)
+    u_restarted, restarted = solver.solve(big)
+    assert restarted.restarts == 1
+    assert restarted.factorisations == newton.factorisations
+    assert restarted.iterations == newton.iterations
+    np.testing.assert_array_equal(u_restarted, u_newton)
+    np.testing.assert_allclose(model.pose_of(u_modified), model.pose_of(u_newton), rtol=1e-8)
+
+
 def test_a_failed_solve_names_its_forces_and_residual_and_pickles() -> None:
     import pickle
 

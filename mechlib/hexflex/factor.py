@@ -37,10 +37,11 @@ class PatternCholesky:
 
     Notes
     -----
-    CHOLMOD overwrites one factor object in place, so :meth:`factorise` invalidates the solve
-    function it returned before: calling an old one raises ``RuntimeError`` instead of
-    returning another matrix's solution. ``fallbacks`` counts the matrices that were not
-    positive definite and went to SuperLU.
+    CHOLMOD overwrites one factor object in place, so each factorisation (:meth:`factorise`,
+    :meth:`factorise_values`, :meth:`factorise_upper`) invalidates the solve function returned
+    before: calling an old one raises ``RuntimeError`` instead of returning another matrix's
+    solution. ``fallbacks`` counts the matrices that were not positive definite and went to
+    SuperLU (an LU of the symmetric matrix rebuilt from the upper triangle).
     """
 
     def __init__(self, matrix: sp.sparray | sp.spmatrix) -> None:
@@ -72,7 +73,8 @@ class PatternCholesky:
         self.fallbacks = 0
 
     def factorise(self, matrix: sp.sparray | sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
-        """Factorise a matrix of the pattern; returns ``solve(rhs) -> x`` for rhs (n,).
+        """Factorise a symmetric matrix of the pattern; returns ``solve(rhs) -> x`` for rhs
+        (n,). Only its upper triangle is read (by the LU fallback too).
 
         Raises
         ------
@@ -90,32 +92,53 @@ class PatternCholesky:
         return self.factorise_values(m.data)
 
     def factorise_values(self, data: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
-        """:meth:`factorise` of the matrix of the pattern with stored values ``data`` (nnz,),
-        in the CSR order of the pattern given at construction (no pattern check)."""
+        """:meth:`factorise` of the matrix of the pattern with stored values ``data``, in the
+        CSR order of the pattern given at construction (no pattern check).
+
+        Raises
+        ------
+        ValueError
+            If ``data`` is not of shape (nnz,), nnz the pattern's stored entries.
+        """
         data = np.asarray(data, dtype=float)
         if data.shape != (len(self._indices),):
             raise ValueError(f"data must have shape ({len(self._indices)},), got {data.shape}")
-        return self.factorise_upper(data[self._order])
+        np.take(data, self._order, out=self._upper[:, 0])  # into the cvxopt buffer
+        return self._numeric()
 
     def factorise_upper(self, upper: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
         """:meth:`factorise` of the symmetric matrix of the pattern whose upper triangle
         (column ≥ row) holds ``upper``, in the CSR order of the pattern (row by row, columns
-        increasing): only the half a Cholesky reads, with no copy of the other half."""
+        increasing): only the half a Cholesky reads, with no copy of the other half.
+
+        Raises
+        ------
+        ValueError
+            If ``upper`` is not of shape (n_upper,), n_upper the pattern's entries with
+            column ≥ row.
+        """
+        upper = np.asarray(upper, dtype=float)
+        if upper.shape != self._upper.shape[:1]:
+            raise ValueError(
+                f"upper must have shape ({len(self._upper)},) (the pattern's entries with "
+                f"column >= row), got {upper.shape}"
+            )
+        self._upper[:, 0] = upper  # into the cvxopt buffer
+        return self._numeric()
+
+    def _numeric(self) -> Callable[[np.ndarray], np.ndarray]:
+        """Factorise the matrix whose upper triangle is in the cvxopt buffer."""
         from cvxopt import cholmod
         from cvxopt import matrix as dense
 
-        upper = np.asarray(upper, dtype=float)
-        if upper.shape != self._upper.shape[:1]:
-            raise ValueError(f"upper must have shape ({len(self._upper)},), got {upper.shape}")
         self._generation += 1
         generation = self._generation
-        self._upper[:, 0] = upper  # into the cvxopt buffer
         self._matrix.V = self._upper_buffer
         try:
             cholmod.numeric(self._matrix, self._factor)
         except ArithmeticError:  # not positive definite
             self.fallbacks += 1
-            return factorise(self._symmetric(upper)).solve
+            return factorise(self._symmetric(self._upper[:, 0].copy())).solve
 
         def solve(rhs: np.ndarray) -> np.ndarray:
             if generation != self._generation:

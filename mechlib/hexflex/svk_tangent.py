@@ -7,13 +7,13 @@ Piola–Kirchhoff stress ``S = λ tr(E) I + 2 μ E`` (λ, μ read from SfePy's i
 ``stiffness_from_youngpoisson``; the constructor checks that it is isotropic), the element
 tangent is
 
-    K_e = Σ_q w_q [B_qᵀ D B_q + (∇N_qᵀ S_q ∇N_q) ⊗ I₃],
+    K_e = Σ_q w_q [B_qᵀ D B_q + I₃ ⊗ (∇N_qᵀ S_q ∇N_q)]   (DOFs ordered component, node),
 
 where ``B_q`` maps nodal displacement increments to increments of the Voigt strain and ``w_q``
 is the quadrature weight times det J. For an isotropic ``D`` the material term needs no B: with
 ``h_a = F ∇N_a`` and ``b = F Fᵀ`` its block (components c, d; nodes a, b) is
 ``Σ_q w (λ h_ac h_bd + μ h_ad h_bc + μ b_cd ∇N_a·∇N_b)`` — one product over the stacked ``h``
-and six small ones over ∇N, 2.5× fewer multiplications than ``Bᵀ D B``. The element matrices
+and six small ones over ∇N, half the multiplications of ``Bᵀ (D B)``. The element matrices
 are summed into the CSR pattern (or its upper triangle, what a Cholesky reads) by one
 ``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.nonlinear.tl_evaluator`,
 one ``D`` acts on the whole domain (the model's ``body_factor`` is not applied), and the clamp
@@ -34,8 +34,8 @@ from mechlib.params import check_int
 if TYPE_CHECKING:
     from mechlib.hexflex.model import HexFlexModel
 
-#: Elements per batch of matrix products: small batches keep the temporaries (≈ 3 MB each at
-#: 32 Q2 elements) in cache, 1.4× faster than batches of 500 (measured).
+#: Elements per batch of matrix products: small batches keep the temporaries (≤ 1.7 MB each at
+#: 32 Q2 elements) in cache; 16–64 were measured within 5 %, 8 and 128 6–12 % slower.
 CHUNK = 32
 
 
@@ -61,8 +61,8 @@ class SVKTangent:
     Notes
     -----
     The element matrices are kept between calls of :meth:`matrix` (n_el · 81² floats, 260 MB on
-    the 5004-element model, beside a scatter index of the same size, and the upper triangle's
-    index of half that once :meth:`upper_values` is called): not thread-safe.
+    the 5004-element model, beside a scatter index of the same size; :meth:`upper_values` adds
+    two indices and a buffer of half that size each, ≈ 400 MB): not thread-safe.
     """
 
     def __init__(self, model: HexFlexModel, chunk: int = CHUNK) -> None:
@@ -104,8 +104,9 @@ class SVKTangent:
         self.nnz = len(self._indices)
         self._values: np.ndarray | None = None  # element matrices (n_el, 3 n_ep, 3 n_ep)
         self._dof_index: np.ndarray | None = None  # reduced DOF of each element force entry
-        #: element entries summed into the upper triangle, their positions there, its size
-        self._upper: tuple[np.ndarray, np.ndarray, int] | None = None
+        #: element entries summed into the upper triangle, their positions there, its size and
+        #: a buffer of their values (built by the first :meth:`upper_values`)
+        self._upper: tuple[np.ndarray, np.ndarray, int, np.ndarray] | None = None
 
     def pattern(self) -> sp.csr_array:
         """The CSR pattern of :meth:`matrix` (symmetric), with every stored value 1."""
@@ -138,7 +139,7 @@ class SVKTangent:
 
     def values(self, u: object) -> np.ndarray:
         """The stored values (nnz,) of :meth:`matrix` at ``u``, in the order of
-        :meth:`pattern` (no index arrays built)."""
+        :meth:`pattern` (no index arrays built); raises as :meth:`matrix`."""
         elements = self._element_stack(u)
         data = np.bincount(self._scatter, weights=elements.ravel(), minlength=self.nnz + 1)
         return data[:-1]
@@ -147,16 +148,20 @@ class SVKTangent:
         """The upper triangle (column ≥ row) of :meth:`values`, in CSR order: row by row,
         columns increasing — the lower triangle of the symmetric matrix in column-major order,
         which is what :meth:`mechlib.hexflex.factor.PatternCholesky.factorise_upper` of
-        :meth:`pattern` takes. Only the element-matrix entries that land there are summed."""
+        :meth:`pattern` takes. Only the element-matrix entries that land there are summed; the
+        same numbers, bit for bit, as ``values(u)`` at those positions. Raises as :meth:`matrix`.
+        """
         elements = self._element_stack(u)
         if self._upper is None:
             rows = np.repeat(np.arange(self.n_dofs), np.diff(self._indptr))
             upper = np.append(self._indices >= rows, False)  # the clamped entries' bin: no
             rank = np.cumsum(upper) - 1
             select = np.flatnonzero(upper[self._scatter])
-            self._upper = (select, rank[self._scatter[select]], int(upper.sum()))
-        select, scatter, count = self._upper
-        return np.bincount(scatter, weights=elements.ravel()[select], minlength=count)
+            gathered = np.empty(len(select))  # kept, like the element matrices
+            self._upper = (select, rank[self._scatter[select]], int(upper.sum()), gathered)
+        select, scatter, count, gathered = self._upper
+        np.take(elements.ravel(), select, out=gathered)
+        return np.bincount(scatter, weights=gathered, minlength=count)
 
     def _element_stack(self, u: object) -> np.ndarray:
         """The element tangents (n_el, 3 n_ep, 3 n_ep) at ``u``, in a buffer kept between
@@ -251,7 +256,7 @@ class SVKTangent:
 
             Σ_q w [λ h_ac h_bd + μ h_ad h_bc + μ b_cd ∇N_a·∇N_b + δ_cd ∇N_aᵀ S ∇N_b],
 
-        the material term ``Bᵀ D B`` written without B (2.5× fewer products).
+        the material term ``Bᵀ D B`` written without B (half the multiplications).
         """
         ft = self._deformation(disp, cells)
         if ft is None:
