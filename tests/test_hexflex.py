@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from mechlib import published as pub
-from mechlib.hexflex import beamcheck, checks, convergence, nonlinear
+from mechlib.hexflex import beamcheck, checks, convergence, nonlinear, sfepy_tl
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import identify as ident
 from mechlib.hexflex import mesh as ms
@@ -267,7 +267,7 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
     with pytest.raises(ValueError, match="element must be 'q2'"):
         nonlinear.NonlinearSolver(shell)
     with pytest.raises(ValueError, match="element must be 'q2' for a TL term, got 'shell'"):
-        nonlinear.tl_evaluator(shell, "dw_tl_he_svk")
+        sfepy_tl.tl_evaluator(shell, "dw_tl_he_svk")
 
 
 def test_a_load_step_the_modified_method_gives_up_is_solved_by_newton(
@@ -304,11 +304,11 @@ def test_the_consistent_tangent_does_not_take_a_stale_stress() -> None:
     u = model.solve_reduced(np.array([[0.0, 0.0, 0.0, 3.0, -2.0, 0.0]]))[:, 0]
 
     def tangent_after_residual_at(term: str, elsewhere: float) -> np.ndarray:
-        ev = nonlinear.tl_evaluator(model, term)
+        ev = sfepy_tl.tl_evaluator(model, term)
         ev.eval_residual(elsewhere * u)
         return ev.eval_tangent_matrix(u).copy()
 
-    ours = nonlinear.register_svk_term()
+    ours = sfepy_tl.register_svk_term()
     k = tangent_after_residual_at(ours, 1.0)
     assert abs(tangent_after_residual_at(ours, 2.0) - k).max() == 0.0
     # SfePy's stock term takes the stress of the last residual evaluated (the trap avoided);
@@ -322,8 +322,8 @@ def test_the_consistent_tangent_does_not_take_a_stale_stress() -> None:
 def test_two_tl_evaluators_on_one_model_do_not_share_state() -> None:
     model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
     u = model.solve_reduced(np.array([[0.0, 0.0, 0.0, 3.0, -2.0, 0.0]]))[:, 0]
-    first = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
-    second = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    first = sfepy_tl.tl_evaluator(model, sfepy_tl.register_svk_term())
+    second = sfepy_tl.tl_evaluator(model, sfepy_tl.register_svk_term())
     alone = first.eval_residual(u).copy()
     second.eval_residual(2.0 * u)
     np.testing.assert_array_equal(first.eval_residual(u), alone)
@@ -333,7 +333,7 @@ def test_two_tl_evaluators_on_one_model_do_not_share_state() -> None:
 def _tl_tangent_error(model: HexFlexModel, term: str) -> tuple[float, list[float]]:
     """Tangent at u = 0 against the linear stiffness, and the central-difference error of the
     tangent at a deformed state for two steps, for one TL term on the model's field."""
-    ev = nonlinear.tl_evaluator(model, term)
+    ev = sfepy_tl.tl_evaluator(model, term)
     k0 = model.assembled_stiffness()
     at_zero = abs(ev.eval_tangent_matrix(np.zeros(model.n_dofs)) - k0).max() / abs(k0).max()
     u = model.solve_reduced(np.array([[0.0, 0.0, 0.0, 3.0, -2.0, 0.0]]))[:, 0]
@@ -348,12 +348,12 @@ def _tl_tangent_error(model: HexFlexModel, term: str) -> tuple[float, list[float
 
 def test_tl_tangent_is_the_derivative_of_the_residual() -> None:
     model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
-    at_zero, errors = _tl_tangent_error(model, nonlinear.register_svk_term())
+    at_zero, errors = _tl_tangent_error(model, sfepy_tl.register_svk_term())
     assert at_zero < 1e-10  # the small-strain limit is the linear model
     # central differences: error falls like h² down to round-off
     assert errors[1] < 1e-6 and errors[1] < 0.02 * errors[0]
     # SfePy's stock term (the reason for the consistent one): wrong at u = 0 by shear terms.
-    # If this starts failing, SfePy fixed it and nonlinear.register_svk_term can go.
+    # If this starts failing, SfePy fixed it and sfepy_tl.register_svk_term can go.
     stock_zero, stock_errors = _tl_tangent_error(model, "dw_tl_he_svk")
     assert stock_zero > 1e-2 and min(stock_errors) > 1e-2
 

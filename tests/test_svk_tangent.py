@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import nonlinear
+from mechlib.hexflex import sfepy_tl
 from mechlib.hexflex.factor import PatternCholesky
 from mechlib.hexflex.model import HexFlexModel
 from mechlib.hexflex.svk_tangent import SVKTangent
@@ -43,7 +43,7 @@ def _relative_difference(a, b) -> float:
 def _sfepy_tangent(model: HexFlexModel, term: str, u: np.ndarray):
     """SfePy's tangent at ``u``; the residual first, since SfePy's tangent reuses the stress of
     the last residual evaluation (HyperElasticBase.stress_cache)."""
-    ev = nonlinear.tl_evaluator(model, term)
+    ev = sfepy_tl.tl_evaluator(model, term)
     ev.eval_residual(u)
     return ev.eval_tangent_matrix(u).copy()
 
@@ -58,7 +58,7 @@ def _turned_inside_out(model: HexFlexModel) -> np.ndarray:
 def test_tangent_equals_sfepys_consistent_tangent(
     model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
 ) -> None:
-    term = nonlinear.register_svk_term()
+    term = sfepy_tl.register_svk_term()
     for u in (np.zeros(model.n_dofs), deformed):
         ours, ref = tangent.matrix(u), _sfepy_tangent(model, term, u)
         assert ours.shape == ref.shape == (model.n_dofs, model.n_dofs)
@@ -74,7 +74,7 @@ def test_tangent_equals_sfepys_consistent_tangent(
 def test_tangent_is_the_derivative_of_sfepys_residual(
     model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
 ) -> None:
-    ev = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    ev = sfepy_tl.tl_evaluator(model, sfepy_tl.register_svk_term())
     w = deformed * np.random.default_rng(0).standard_normal(deformed.size)
     kw = tangent.matrix(deformed) @ w
     errors = []
@@ -89,7 +89,7 @@ def test_the_comparison_catches_a_wrong_tangent(
     model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
 ) -> None:
     ours = tangent.matrix(deformed)
-    ref = _sfepy_tangent(model, nonlinear.register_svk_term(), deformed)
+    ref = _sfepy_tangent(model, sfepy_tl.register_svk_term(), deformed)
     wrong = ours.copy()
     wrong.data[wrong.nnz // 2] += 1e-10 * abs(wrong.data).max()  # one entry, by 1e-10
     assert _relative_difference(wrong, ref) > 10 * SAME
@@ -99,7 +99,7 @@ def test_the_comparison_catches_a_wrong_tangent(
     # ... and so is the tangent at another state
     assert _relative_difference(tangent.matrix(1.01 * deformed), ref) > 1e-6
     # ... and so is SfePy's stock tangent taking the stress of its last residual (at u = 0)
-    ev = nonlinear.tl_evaluator(model, "dw_tl_he_svk")
+    ev = sfepy_tl.tl_evaluator(model, "dw_tl_he_svk")
     ev.eval_residual(np.zeros(model.n_dofs))
     assert _relative_difference(stock, ev.eval_tangent_matrix(deformed)) > 1e-5
 
@@ -107,7 +107,7 @@ def test_the_comparison_catches_a_wrong_tangent(
 def test_internal_force_equals_sfepys_residual(
     model: HexFlexModel, tangent: SVKTangent, deformed: np.ndarray
 ) -> None:
-    ev = nonlinear.tl_evaluator(model, nonlinear.register_svk_term())
+    ev = sfepy_tl.tl_evaluator(model, sfepy_tl.register_svk_term())
     for u in (deformed, 5.0 * deformed):
         ref = ev.eval_residual(u).copy()
         ours = tangent.internal_force(u)

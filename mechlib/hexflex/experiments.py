@@ -45,6 +45,7 @@ _MODEL_SOURCES: tuple[str, ...] = (
     "model.py",
     "nonlinear.py",
     "svk_tangent.py",
+    "sfepy_tl.py",
     "factor.py",
     "pose.py",
 )

@@ -15,7 +15,7 @@ is the quadrature weight times det J. For an isotropic ``D`` the material term n
 ``Σ_q w (λ h_ac h_bd + μ h_ad h_bc + μ b_cd ∇N_a·∇N_b)`` — one product over the stacked ``h``
 and six small ones over ∇N, half the multiplications of ``Bᵀ (D B)``. The element matrices
 are summed into the CSR pattern (or its upper triangle, what a Cholesky reads) by one
-``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.nonlinear.tl_evaluator`,
+``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.sfepy_tl.tl_evaluator`,
 one ``D`` acts on the whole domain (the model's ``body_factor`` is not applied), and the clamp
 holds the ground at zero displacement.
 """
