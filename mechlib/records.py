@@ -11,7 +11,8 @@ reference with the reference's per-value tolerances.
 Command line (used by the Makefile)::
 
     python -m mechlib.records update --records build/records --references tests/references
-    python -m mechlib.records determinism --records build/records
+    python -m mechlib.records rerun --out build/rerun
+    python -m mechlib.records determinism --records build/records --rerun build/rerun/records
 """
 
 from __future__ import annotations
@@ -324,32 +325,68 @@ def update_references(records: Path, references: Path) -> list[str]:
     return lines
 
 
+def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
+    """Execute every notebook again, cold, into ``out`` (emptied first).
+
+    The executed notebooks go to ``out/<name>.ipynb``, their records to ``out/records``
+    (``$MECHLIB_RECORDS``), and their FE results to an empty cache of their own,
+    ``out/fe-cache`` (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares
+    nothing with a first run, so the two can run at the same time (``make test`` does).
+
+    Raises
+    ------
+    RuntimeError
+        If a notebook fails, naming it, with the end of papermill's error output.
+    """
+    from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
+
+    out = Path(out)
+    shutil.rmtree(out, ignore_errors=True)
+    (out / "records").mkdir(parents=True)
+    env = dict(
+        os.environ, **{RECORDS_ENV: str(out / "records"), FE_CACHE_ENV: str(out / "fe-cache")}
+    )
+    for nb in sorted(Path(notebooks).glob("*.ipynb")):
+        cmd = papermill_command(nb, out / nb.name, python=python)
+        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+        if done.returncode != 0:
+            tail = "\n".join(done.stderr.splitlines()[-20:])
+            raise RuntimeError(f"the re-run of {nb.name} failed (exit {done.returncode}):\n{tail}")
+
+
+def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
+    """Each notebook whose re-run record is not byte-identical to its first one, with the
+    values that differ (empty: the two runs agree)."""
+    problems = []
+    for nb in sorted(Path(notebooks).glob("*.ipynb")):
+        first, second = Path(records) / f"{nb.stem}.json", Path(rerun_records) / f"{nb.stem}.json"
+        missing = [
+            f"{which} record at {path}"
+            for which, path in (("first-run", first), ("re-run", second))
+            if not path.exists()
+        ]
+        if missing:
+            problems.append(f"{nb.stem}: no " + " and no ".join(missing))
+        elif second.read_bytes() != first.read_bytes():
+            diffs = compare(load(second), load(first))
+            problems.append(f"{nb.stem}: second run differs: {diffs or 'formatting only'}")
+    return problems
+
+
 def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable) -> list[str]:
-    """Execute every notebook again and check its record is byte-identical to ``records``.
+    """Execute every notebook again (:func:`rerun`, in a temporary folder) and check its record
+    is byte-identical to the one in ``records`` (:func:`rerun_differences`).
 
     The second run starts from an empty FE cache (``$MECHLIB_FE_CACHE`` in a temporary folder),
     so it checks that two cold computations agree, not merely that cached results are returned.
     """
-    from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
-
-    problems = []
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, **{RECORDS_ENV: tmp, FE_CACHE_ENV: str(Path(tmp) / "fe-cache")})
-        for nb in sorted(Path(notebooks).glob("*.ipynb")):
-            first = Path(records) / f"{nb.stem}.json"
-            if not first.exists():
-                problems.append(f"{nb.stem}: no first-run record at {first}")
-                continue
-            cmd = papermill_command(nb, Path(tmp) / nb.name, python=python)
-            subprocess.run(cmd, check=True, env=env, capture_output=True)
-            if (Path(tmp) / first.name).read_bytes() != first.read_bytes():
-                diffs = compare(load(Path(tmp) / first.name), load(first))
-                problems.append(f"{nb.stem}: second run differs: {diffs or 'formatting only'}")
-    return problems
+        rerun(notebooks, Path(tmp), python=python)
+        return rerun_differences(records, Path(tmp) / "records", notebooks)
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Command-line entry point (``update`` or ``determinism``)."""
+    """Command-line entry point (``update``, ``rerun`` or ``determinism``)."""
     parser = argparse.ArgumentParser(prog="python -m mechlib.records")
     sub = parser.add_subparsers(dest="cmd", required=True)
     up = sub.add_parser("update", help="re-record references from build/records")
@@ -358,12 +395,25 @@ def main(argv: list[str] | None = None) -> int:
     det = sub.add_parser("determinism", help="re-run notebooks and require identical records")
     det.add_argument("--records", type=Path, required=True)
     det.add_argument("--notebooks", type=Path, default=REPO_ROOT / "notebooks")
+    det.add_argument(
+        "--rerun", type=Path, help="records of a re-run already made (`rerun`): compare only"
+    )
+    again = sub.add_parser("rerun", help="execute every notebook again, cold, into a folder")
+    again.add_argument("--out", type=Path, required=True)
+    again.add_argument("--notebooks", type=Path, default=REPO_ROOT / "notebooks")
     args = parser.parse_args(argv)
     if args.cmd == "update":
         for line in update_references(args.records, args.references):
             print(line)
         return 0
-    problems = rerun_identical(args.records, args.notebooks)
+    if args.cmd == "rerun":
+        rerun(args.notebooks, args.out)
+        print(f"re-run: every notebook executed again into {args.out}")
+        return 0
+    if args.rerun is None:
+        problems = rerun_identical(args.records, args.notebooks)
+    else:
+        problems = rerun_differences(args.records, args.rerun, args.notebooks)
     for p in problems:
         print("NOT DETERMINISTIC:", p)
     print("determinism: " + ("FAILED" if problems else "records identical on a second run"))

@@ -13,7 +13,7 @@ notebook (for a bad parameter value, the notebook's own ``ValueError`` message) 
 line with the path of the executed notebook, which holds the full traceback.
 
 :func:`papermill_command` is the one papermill command line of the Python code (this module,
-:func:`mechlib.records.rerun_identical`, the notebook-parameter tests); the Makefile keeps its
+:func:`mechlib.records.rerun`, the notebook-parameter tests); the Makefile keeps its
 own for the book's notebooks.
 """
 

@@ -136,6 +136,21 @@ def test_determinism_rerun_is_cold_and_flags_a_changed_record(tmp_path: Path) ->
     assert "cold_cache" in problems[0]
 
 
+def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: Path) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    cell = nbformat.v4.new_code_cell('raise ValueError("probe_broke")')
+    nbformat.write(nbformat.v4.new_notebook(cells=[cell]), notebooks / "broken.ipynb")
+    with pytest.raises(RuntimeError, match=r"(?s)re-run of broken.ipynb failed.*probe_broke"):
+        records.rerun(notebooks, tmp_path / "out")
+    # a first-run record with no re-run record is a difference, not a pass
+    first = tmp_path / "records"
+    Recorder("broken").save(first)
+    problems = records.rerun_differences(first, tmp_path / "out" / "records", notebooks)
+    assert len(problems) == 1 and "broken: no re-run record" in problems[0]
+
+
 # --- one call: record, glue, report ------------------------------------------------------------
 def _pasting() -> tuple[Recorder, dict]:
     pasted: dict = {}
