@@ -37,6 +37,7 @@ help:
 	@echo "                 PROFILE=full: the full-size runs of notebooks/profiles/full/ (hours)"
 	@echo "make test        unit tests + every notebook + reference comparison + book build and checks"
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
+	@echo "make rerun       execute every notebook again, cold, into build/rerun (make test compares records)"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
@@ -117,7 +118,8 @@ test: $(STAMP)
 # every notebook executed again, cold (an FE cache of its own), into $(RERUN): `make test`
 # requires its records to be byte-identical to the first run's
 rerun: $(STAMP)
-	$(PY) -m mechlib.records rerun --out $(RERUN)
+	@test "$(PROFILE)" = ci || { echo "make rerun runs the ci profile; got PROFILE=$(PROFILE)"; exit 2; }
+	$(PY) -m mechlib.records rerun --out $(abspath $(RERUN))
 
 # --- one notebook with new parameters ---------------------------------------------------------
 run: $(STAMP)
@@ -134,7 +136,7 @@ references: $(EXECUTED)
 comma := ,
 BENCH_ON_MODEL := $(if $(ONLY),$(filter nonlinear chapter,$(subst $(comma), ,$(ONLY))),all)
 bench: $(STAMP) $(if $(BENCH_ON_MODEL),$(BUILD)/executed/hexflex_model.ipynb)
-	$(PY) -m mechlib.bench $(if $(ONLY),--only $(ONLY))
+	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(PY) -m mechlib.bench $(if $(ONLY),--only $(ONLY))
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check mechlib tests notebooks

@@ -37,6 +37,9 @@ from mechlib.params import check_float
 REPO_ROOT = Path(__file__).resolve().parents[1]
 RECORDS_ENV = "MECHLIB_RECORDS"
 FE_CACHE_ENV = "MECHLIB_FE_CACHE"
+#: set to "1": :func:`recorded_value` reads ``records_dir()`` only, never the default build's
+#: records (the determinism re-run, which must not read the first run's)
+RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
 
 
 def records_dir() -> Path:
@@ -233,21 +236,21 @@ def recorded_value(notebook: str, key: str) -> Any:
     """A value recorded by another notebook: from ``records_dir()`` (this build or run) if it
     holds that notebook's record, else from the default build's ``build/records`` — and then it
     says so on stderr (a ``make run`` reads the default build's upstream record; a record of
-    another profile is never taken without a word).
+    another profile is never taken without a word). With ``$MECHLIB_RECORDS_STRICT=1``, only
+    ``records_dir()`` is read.
 
     Raises
     ------
     FileNotFoundError
         When that notebook has not been executed, naming the command that does it.
     """
-    places = [
-        records_dir() / f"{notebook}.json",
-        REPO_ROOT / "build" / "records" / f"{notebook}.json",
-    ]
+    places = [records_dir() / f"{notebook}.json"]
+    if os.environ.get(RECORDS_STRICT_ENV) != "1":
+        places.append(REPO_ROOT / "build" / "records" / f"{notebook}.json")
     path = next((p for p in places if p.exists()), None)
     if path is None:
         raise FileNotFoundError(
-            f"no record of notebook {notebook!r} in {places[0].parent} or {places[1].parent}: "
+            f"no record of notebook {notebook!r} in {' or '.join(str(p.parent) for p in places)}: "
             f"execute it first (make notebooks)"
         )
     if path != places[0]:
@@ -329,29 +332,41 @@ def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
     """Execute every notebook again, cold, into ``out`` (emptied first).
 
     The executed notebooks go to ``out/<name>.ipynb``, their records to ``out/records``
-    (``$MECHLIB_RECORDS``), and their FE results to an empty cache of their own,
-    ``out/fe-cache`` (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares
-    nothing with a first run, so the two can run at the same time (``make test`` does).
+    (``$MECHLIB_RECORDS``, read strictly: a notebook reading another's record reads the
+    re-run's), and their FE results to an empty cache of their own, ``out/fe-cache``
+    (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares nothing with a
+    first run, so the two can run at the same time (``make test`` does). Notebooks run in name
+    order, which puts ``hexflex_model`` before ``virtual_experiments``, the one that reads it.
 
     Raises
     ------
     RuntimeError
-        If a notebook fails, naming it, with the end of papermill's error output.
+        If a notebook fails, naming it and its executed copy (which holds the traceback), with
+        the end of papermill's error output.
     """
     from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
 
-    out = Path(out)
+    out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
     shutil.rmtree(out, ignore_errors=True)
     (out / "records").mkdir(parents=True)
     env = dict(
-        os.environ, **{RECORDS_ENV: str(out / "records"), FE_CACHE_ENV: str(out / "fe-cache")}
+        os.environ,
+        **{
+            RECORDS_ENV: str(out / "records"),
+            FE_CACHE_ENV: str(out / "fe-cache"),
+            RECORDS_STRICT_ENV: "1",
+        },
     )
     for nb in sorted(Path(notebooks).glob("*.ipynb")):
+        print(f"re-run: executing {nb.name}", flush=True)
         cmd = papermill_command(nb, out / nb.name, python=python)
         done = subprocess.run(cmd, env=env, capture_output=True, text=True)
         if done.returncode != 0:
             tail = "\n".join(done.stderr.splitlines()[-20:])
-            raise RuntimeError(f"the re-run of {nb.name} failed (exit {done.returncode}):\n{tail}")
+            raise RuntimeError(
+                f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
+                f"{out / nb.name}):\n{tail}"
+            )
 
 
 def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
@@ -407,7 +422,11 @@ def main(argv: list[str] | None = None) -> int:
             print(line)
         return 0
     if args.cmd == "rerun":
-        rerun(args.notebooks, args.out)
+        try:
+            rerun(args.notebooks, args.out)
+        except RuntimeError as err:
+            print(err, file=sys.stderr)
+            return 1
         print(f"re-run: every notebook executed again into {args.out}")
         return 0
     if args.rerun is None:

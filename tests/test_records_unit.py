@@ -105,11 +105,11 @@ def test_fe_cache_dir_follows_its_environment_variable(
 
 
 _PROBE = """\
-from mechlib.records import REPO_ROOT, Recorder, fe_cache_dir
+from mechlib.records import Recorder, fe_cache_dir, records_dir
 d = fe_cache_dir()
 rec = Recorder("probe")
 rec.value("cold_cache", not d.exists() or not any(d.iterdir()))
-rec.value("private_cache", (REPO_ROOT / "build") not in d.parents)
+rec.value("private_cache", d.is_absolute() and d.parent == records_dir().parent)
 rec.save()
 """
 
@@ -134,6 +134,33 @@ def test_determinism_rerun_is_cold_and_flags_a_changed_record(tmp_path: Path) ->
     problems = records.rerun_identical(first, notebooks)
     assert len(problems) == 1 and "probe: second run differs" in problems[0]
     assert "cold_cache" in problems[0]
+
+
+def test_a_rerun_into_a_relative_folder_writes_there(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    (tmp_path / "nbs").mkdir()
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(_PROBE)])
+    nbformat.write(nb, tmp_path / "nbs" / "probe.ipynb")
+    monkeypatch.chdir(tmp_path)  # the kernel runs in nbs/: a relative path must not follow it
+    assert records.main(["rerun", "--out", "out", "--notebooks", "nbs"]) == 0
+    values = load(tmp_path / "out" / "records" / "probe.json")["values"]
+    assert values["cold_cache"]["value"] is True and values["private_cache"]["value"] is True
+
+
+def test_a_strict_records_folder_never_reads_the_default_build(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    default = Recorder("upstream")
+    default.value("x", 1.5, rtol=0)
+    default.save(tmp_path / "repo" / "build" / "records")
+    monkeypatch.setattr(records, "REPO_ROOT", tmp_path / "repo")
+    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path / "own"))
+    assert records.recorded_value("upstream", "x") == 1.5  # the fallback, with a note
+    monkeypatch.setenv(records.RECORDS_STRICT_ENV, "1")
+    with pytest.raises(FileNotFoundError, match="upstream"):
+        records.recorded_value("upstream", "x")
 
 
 def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: Path) -> None:

@@ -13,8 +13,9 @@ and the residual are computed by :mod:`mechlib.hexflex.svk_tangent` (the same nu
 term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
 done once (:mod:`mechlib.hexflex.factor`). Q2 solid only.
 
-``tangent="sfepy"`` assembles SfePy's own term instead (:mod:`mechlib.hexflex.sfepy_tl`), the
-reference the batched tangent is tested and benchmarked against.
+``tangent="sfepy"`` assembles SfePy's TL term instead (its consistent variant, from
+:mod:`mechlib.hexflex.sfepy_tl`): the reference the batched tangent is tested and benchmarked
+against.
 """
 
 from __future__ import annotations
