@@ -122,6 +122,8 @@ def test_missing_tools_are_reported(monkeypatch: pytest.MonkeyPatch) -> None:
         pdfcheck.pdf_pages(Path("x.pdf"))
     with pytest.raises(pdfcheck.ToolMissing, match="no Chromium"):
         pdf.build(Path("."), Path("x.pdf"))
+    assert pdf.missing_tools() == ["chromium", *pdf.POPPLER]
+    assert pdf.main(["tools"]) == 3
 
 
 needs_chromium = pytest.mark.skipif(

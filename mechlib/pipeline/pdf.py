@@ -11,6 +11,9 @@
     exit 1 when the PDF misses part of the book (see :mod:`mechlib.pipeline.pdfcheck`): each
     problem on a line naming the value found and the one allowed.
 
+``python -m mechlib.pipeline.pdf tools``
+    exit 0 when Chromium and poppler-utils are installed, else 3 naming what is missing.
+
 Needs Debian's ``chromium`` (build) and ``poppler-utils``. Exit status 3 when one is missing.
 """
 
@@ -26,6 +29,7 @@ from pathlib import Path
 from mechlib.pipeline.pdfcheck import ToolMissing, check, page_order, pdf_pages, run_tool
 
 BROWSERS = ("chromium", "chromium-browser", "google-chrome")
+POPPLER = ("pdfinfo", "pdftotext", "pdfimages", "pdfunite")
 # the flags of mechlib.book.browser (offline, root, no first-run chatter), kept here so the two
 # wings can move independently
 FLAGS = (
@@ -124,8 +128,14 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     return out
 
 
+def missing_tools() -> list[str]:
+    """The programs of the PDF route that are not installed (Chromium, poppler's)."""
+    missing = [] if find_browser() else ["chromium"]
+    return missing + [tool for tool in POPPLER if shutil.which(tool) is None]
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Command line: ``build`` or ``check`` (see the module's docstring)."""
+    """Command line: ``build``, ``check`` or ``tools`` (see the module's docstring)."""
     parser = argparse.ArgumentParser(prog="python -m mechlib.pipeline.pdf")
     sub = parser.add_subparsers(dest="command", required=True)
     b = sub.add_parser("build", help="print the HTML book to one PDF")
@@ -135,7 +145,15 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--pdf", type=Path, required=True)
     c.add_argument("--html", type=Path, required=True)
     c.add_argument("--min-pages", type=int, default=1)
+    sub.add_parser(
+        "tools", help="exit 3 (naming them) when programs the PDF route needs are missing"
+    )
     args = parser.parse_args(argv)
+    if args.command == "tools":
+        missing = missing_tools()
+        if missing:
+            print(f"missing: {' '.join(missing)} (apt-get install chromium poppler-utils)")
+        return 3 if missing else 0
     try:
         if args.command == "build":
             out = build(args.html, args.out)
