@@ -68,6 +68,10 @@ def test_summary_counts_raster_images_by_pixel_size(tmp_path: Path) -> None:
     )
     summary = pdfcheck.summarize_html(tmp_path)
     assert summary.image_sizes == Counter({(40, 30): 2, (50, 20): 1})
+    (tmp_path / "f2.png").unlink()
+    with pytest.raises(FileNotFoundError, match=r"index\.html shows f2\.png"):
+        pdfcheck.summarize_html(tmp_path)
+    assert pdf.main(["check", "--pdf", "x.pdf", "--html", str(tmp_path)]) == 2
     assert summary.titles == ["Book"]
     assert summary.pages == summary.documents == 1
 

@@ -14,7 +14,9 @@
 ``python -m mechlib.pipeline.pdf tools``
     exit 0 when Chromium and poppler-utils are installed, else 3 naming what is missing.
 
-Needs Debian's ``chromium`` (build) and ``poppler-utils``. Exit status 3 when one is missing.
+Needs Debian's ``chromium`` (build) and ``poppler-utils``. Exit status: 0 done or passed, 1 the
+PDF misses something, 2 the HTML build is missing (or lacks an image it shows), 3 a program is
+missing.
 """
 
 from __future__ import annotations
@@ -163,6 +165,9 @@ def main(argv: list[str] | None = None) -> int:
     except ToolMissing as missing:
         print(missing, file=sys.stderr)
         return 3
+    except FileNotFoundError as absent:
+        print(absent, file=sys.stderr)
+        return 2
     for p in problems:
         print(f"{args.pdf}: {p}")
     print(f"PDF check: {'FAILED' if problems else 'passed'} ({args.pdf})")

@@ -134,7 +134,13 @@ def page_order(html_dir: Path) -> list[Path]:
 
 
 def image_size(page: Path, src: str) -> tuple[int, int] | None:
-    """Pixel size of a raster ``<img src>`` of ``page`` (None for vector or remote images)."""
+    """Pixel size of a raster ``<img src>`` of ``page`` (None for vector or remote images).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the image file is not in the build.
+    """
     if src.startswith("data:image/"):
         header, _, payload = src.partition(",")
         if not any(t in header for t in ("png", "jpeg", "gif")):
@@ -143,7 +149,10 @@ def image_size(page: Path, src: str) -> tuple[int, int] | None:
     parts = urlsplit(src)
     if parts.scheme or not parts.path.lower().endswith(RASTER):
         return None
-    return Image.open(page.parent / unquote(parts.path)).size
+    path = page.parent / unquote(parts.path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{page.name} shows {src}, which is not in the build")
+    return Image.open(path).size
 
 
 @dataclass
