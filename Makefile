@@ -144,3 +144,24 @@ lint: $(STAMP)
 
 clean:
 	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md
+
+# --- PDF of the book --------------------------------------------------------------------------
+# Headless Chromium prints the single-page HTML build after MathJax ran (from the build's own
+# copy, network off); `check-pdf` compares the PDF with that HTML: page count, every page title,
+# every raster figure, no formula left as TeX. Needs Debian's chromium and poppler-utils (.ci/run
+# installs both). Run after `make book` (it reuses the generated pages; notebooks are not re-run).
+PDF_HTML      := book/_build/singlehtml
+PDF           := book/_build/pdf/book.pdf
+# the whole book printed to 66 pages (measured); fewer than this means a truncated print
+# (check-pdf also derives a floor from the amount of text)
+PDF_MIN_PAGES ?= 50
+
+.PHONY: pdf check-pdf
+pdf: $(STAMP)
+	@test -f book/_build/html/index.html || { echo "no HTML book: run make book first"; exit 2; }
+	rm -rf $(PDF_HTML)
+	$(VENV)/bin/jupyter-book build book --builder singlehtml -W -n --keep-going --quiet
+	$(PY) -m mechlib.pipeline.pdf build --html $(PDF_HTML) --out $(PDF)
+
+check-pdf: $(STAMP)
+	$(PY) -m mechlib.pipeline.pdf check --pdf $(PDF) --html $(PDF_HTML) --min-pages $(PDF_MIN_PAGES)

@@ -1,0 +1,299 @@
+"""Whether a PDF of the book holds the whole book: pages, titles, figures, typeset math.
+
+``check(pdf, html_dir)`` compares the PDF with the HTML it was printed from and lists
+
+* a page count outside ``[low, high]``: at least one page per ``MAX_CHARS_PER_PAGE``
+  characters of the pages' text, at most ``MAX_PAGES_PER_DOCUMENT`` per book page;
+* a page title (each book page's first heading) missing from the PDF's text;
+* a raster figure (``<img>`` of a PNG, JPEG or GIF in a page's ``<main>``) missing from the
+  PDF: every image size (width × height in pixels) must occur in ``pdfimages -list`` at least
+  as often as in the HTML — Chromium embeds an image at its own pixel size;
+* formulas left as TeX: ``\\(``, ``\\[`` or ``$$`` in ``pdftotext``'s output.
+
+Reads the PDF with Debian's ``poppler-utils`` (``pdfinfo``, ``pdftotext``, ``pdfimages``).
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import re
+import shutil
+import subprocess
+import unicodedata
+from collections import Counter
+from dataclasses import dataclass, field
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+from PIL import Image
+
+MAX_CHARS_PER_PAGE = 6000  # an A4/Letter page of 10 pt text holds fewer characters than this
+MAX_PAGES_PER_DOCUMENT = 60  # a book page (chapter) printing longer than this is a runaway
+RASTER = (".png", ".jpg", ".jpeg", ".gif")
+RAW_MATH = re.compile(r"\\\(|\\\[|\$\$")
+INLINE_MATH = re.compile(r"\\\(.*?\\\)")  # math in a title: typeset, so not compared
+# parts of a page that are not its content: navigation, search, sidebars, headers
+SKIPPED_TAGS = ("nav", "header", "footer", "script", "style", "noscript", "template", "dialog")
+
+
+class ToolMissing(RuntimeError):
+    """A program the PDF route needs is not installed."""
+
+
+@dataclass
+class PageInfo:
+    """What the check needs from one HTML page."""
+
+    next_href: str | None = None
+    refresh: str | None = None
+    titles: list[str] = field(default_factory=list)
+    images: list[str] = field(default_factory=list)  # src of <img> in the content
+    text_chars: int = 0
+    documents: int = 0  # singlehtml: <span id="document-…">, one per page but the root
+
+
+class _PageParser(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.info = PageInfo()
+        self._skip = 0  # depth inside a skipped element
+        self._main = 0  # depth inside <main>: the page's content
+        self._h1: list[str] | None = None
+        self._title_next = False
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = {k: v or "" for k, v in attrs}
+        if tag == "link" and a.get("rel") == "next":
+            self.info.next_href = a.get("href")
+        if tag == "meta" and a.get("http-equiv", "").lower() == "refresh":
+            self.info.refresh = a.get("content", "").partition("url=")[2] or None
+        if a.get("id", "").startswith("document-"):
+            self.info.documents += 1
+            self._title_next = True  # singlehtml: the page's title is the next heading
+        if tag == "main":
+            self._main += 1
+        if tag in SKIPPED_TAGS:
+            self._skip += 1
+        elif self._skip or not self._main:
+            return
+        elif tag == "img" and a.get("src"):
+            self.info.images.append(a["src"])
+        elif tag == "h1" or (tag in ("h2", "h3") and self._title_next):
+            self._h1, self._title_next = [], False
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in SKIPPED_TAGS and self._skip:
+            self._skip -= 1
+        if tag == "main" and self._main:
+            self._main -= 1
+        if tag in ("h1", "h2", "h3") and self._h1 is not None:
+            title = " ".join("".join(self._h1).replace("#", " ").split())
+            if title and title not in self.info.titles:
+                self.info.titles.append(title)
+            self._h1 = None
+
+    def handle_data(self, data: str) -> None:
+        if self._skip or not self._main:
+            return
+        if self._h1 is not None:
+            self._h1.append(data)
+        self.info.text_chars += len(data.strip())
+
+
+def parse_page(html: str) -> PageInfo:
+    """Reading-order link, titles, content images and text size of one HTML page."""
+    parser = _PageParser()
+    parser.feed(html)
+    return parser.info
+
+
+def page_order(html_dir: Path) -> list[Path]:
+    """The book's pages in reading order: ``index.html`` (or its redirect), then ``rel=next``.
+
+    Raises
+    ------
+    FileNotFoundError
+        When ``html_dir`` has no ``index.html``.
+    """
+    page = Path(html_dir) / "index.html"
+    if not page.is_file():
+        raise FileNotFoundError(f"no index.html in {html_dir}: build the book first")
+    refresh = parse_page(page.read_text(encoding="utf-8")).refresh
+    if refresh:
+        page = page.parent / unquote(urlsplit(refresh).path)
+    order: list[Path] = []
+    while page.is_file() and page.resolve() not in order:
+        order.append(page.resolve())
+        nxt = parse_page(page.read_text(encoding="utf-8")).next_href
+        if not nxt:
+            break
+        page = page.parent / unquote(urlsplit(nxt).path)
+    return order
+
+
+def image_size(page: Path, src: str) -> tuple[int, int] | None:
+    """Pixel size of a raster ``<img src>`` of ``page`` (None for vector or remote images).
+
+    Raises
+    ------
+    FileNotFoundError
+        When the image file is not in the build.
+    """
+    if src.startswith("data:image/"):
+        header, _, payload = src.partition(",")
+        if not any(t in header for t in ("png", "jpeg", "gif")):
+            return None
+        return Image.open(io.BytesIO(base64.b64decode(payload))).size
+    parts = urlsplit(src)
+    if parts.scheme or not parts.path.lower().endswith(RASTER):
+        return None
+    path = page.parent / unquote(parts.path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{page.name} shows {src}, which is not in the build")
+    return Image.open(path).size
+
+
+@dataclass
+class HtmlSummary:
+    """What the book's HTML says the PDF must hold."""
+
+    pages: int
+    documents: int
+    titles: list[str]
+    image_sizes: Counter[tuple[int, int]]
+    text_chars: int
+
+
+def summarize_html(html_dir: Path) -> HtmlSummary:
+    """Page titles, raster image sizes and text size of the book's pages in reading order."""
+    sizes: Counter[tuple[int, int]] = Counter()
+    titles: list[str] = []
+    chars = documents = 0
+    pages = page_order(html_dir)
+    for page in pages:
+        info = parse_page(page.read_text(encoding="utf-8"))
+        titles += [t for t in info.titles if t not in titles]
+        chars += info.text_chars
+        documents += info.documents + 1  # singlehtml: the root page has no marker
+        sizes.update(s for s in (image_size(page, src) for src in info.images) if s)
+    return HtmlSummary(len(pages), documents, titles, sizes, chars)
+
+
+def page_range(summary: HtmlSummary, min_pages: int = 1) -> tuple[int, int]:
+    """Allowed page count ``[low, high]`` of the book's PDF."""
+    low = max(min_pages, 1, summary.text_chars // MAX_CHARS_PER_PAGE)
+    return low, max(low, MAX_PAGES_PER_DOCUMENT * summary.documents)
+
+
+def parse_pdfimages_list(listing: str) -> Counter[tuple[int, int]]:
+    """Image sizes (width, height) in the output of ``pdfimages -list``, masks left out."""
+    sizes: Counter[tuple[int, int]] = Counter()
+    for line in listing.splitlines()[2:]:
+        cols = line.split()
+        if len(cols) > 4 and cols[2] == "image":
+            sizes[int(cols[3]), int(cols[4])] += 1
+    return sizes
+
+
+def raw_math(text: str, context: int = 25) -> list[str]:
+    """Snippets of ``text`` around TeX math delimiters left untypeset."""
+    return [
+        " ".join(text[max(m.start() - context, 0) : m.end() + context].split())
+        for m in RAW_MATH.finditer(text)
+    ]
+
+
+def missing_titles(titles: list[str], text: str) -> list[str]:
+    """Titles not found in ``text`` (whitespace- and ligature-insensitive; math left out)."""
+    flat = " ".join(unicodedata.normalize("NFKC", text).split())
+    return [
+        title
+        for title in titles
+        if not all(
+            " ".join(unicodedata.normalize("NFKC", chunk).split()) in flat
+            for chunk in INLINE_MATH.split(title)
+        )
+    ]
+
+
+def missing_images(
+    html_sizes: Counter[tuple[int, int]], pdf_sizes: Counter[tuple[int, int]]
+) -> list[str]:
+    """One line per image size the PDF holds fewer times than the HTML shows it."""
+    return [
+        f"{w}x{h} px image: {n} in the HTML, {pdf_sizes[w, h]} in the PDF"
+        for (w, h), n in sorted(html_sizes.items())
+        if pdf_sizes[w, h] < n
+    ]
+
+
+def run_tool(cmd: list[str], timeout: float = 120) -> str:
+    """Standard output of a poppler program (``cmd[0]``) run on ``cmd[1:]``.
+
+    Raises
+    ------
+    ToolMissing
+        When the program is not installed.
+    RuntimeError
+        When it exits with an error.
+    """
+    tool = shutil.which(cmd[0])
+    if tool is None:
+        raise ToolMissing(f"{cmd[0]} not found: apt-get install poppler-utils")
+    done = subprocess.run(
+        [tool, *cmd[1:]], capture_output=True, text=True, timeout=timeout, check=False
+    )
+    if done.returncode:
+        raise RuntimeError(f"{' '.join(cmd)} exited {done.returncode}: {done.stderr.strip()}")
+    return done.stdout
+
+
+def pdf_pages(pdf: Path) -> int:
+    """Page count (``pdfinfo``)."""
+    found = re.search(r"^Pages:\s+(\d+)", run_tool(["pdfinfo", str(pdf)]), re.MULTILINE)
+    if found is None:
+        raise RuntimeError(f"pdfinfo reports no page count for {pdf}")
+    return int(found.group(1))
+
+
+def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
+    """Problems of the book's PDF against its HTML (empty when it is complete).
+
+    Parameters
+    ----------
+    pdf : Path
+        The printed book.
+    html_dir : Path
+        The HTML build it was printed from (``html`` or ``singlehtml``).
+    min_pages : int
+        A lower bound of the page count on top of the one the text size gives.
+
+    Returns
+    -------
+    list of str
+        One line per problem, naming the value found and the one allowed.
+    """
+    summary = summarize_html(html_dir)
+    problems = []
+    pages = pdf_pages(pdf)
+    low, high = page_range(summary, min_pages)
+    if not low <= pages <= high:
+        problems.append(
+            f"{pages} pages, allowed [{low}, {high}] ({summary.text_chars} characters of text "
+            f"at ≤ {MAX_CHARS_PER_PAGE} a page; ≤ {MAX_PAGES_PER_DOCUMENT} pages per document, "
+            f"{summary.documents} documents)"
+        )
+    text = run_tool(["pdftotext", "-enc", "UTF-8", str(pdf), "-"])
+    problems += [
+        f"page title missing from the PDF text: {t!r}" for t in missing_titles(summary.titles, text)
+    ]
+    pdf_sizes = parse_pdfimages_list(run_tool(["pdfimages", "-list", str(pdf)]))
+    problems += missing_images(summary.image_sizes, pdf_sizes)
+    raw = raw_math(text)
+    if raw:
+        problems.append(
+            f"{len(raw)} TeX math delimiters left untypeset (allowed 0), e.g. {raw[0]!r}"
+        )
+    return problems
