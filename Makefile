@@ -41,6 +41,8 @@ help:
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
+	@echo "make pdf         print the built book to book/_build/pdf/book.pdf (headless Chromium; after make book)"
+	@echo "make check-pdf   check that PDF: page count, page titles, every figure, no raw TeX"
 	@echo "make lock        regenerate environment.lock from requirements.in"
 
 # --- environment ------------------------------------------------------------------------------
@@ -113,6 +115,9 @@ test: $(STAMP)
 	@if $(PY) -c 'import sys; from mechlib.book.browser import find_browser; sys.exit(not find_browser())'; \
 	then $(MAKE) --no-print-directory check-browser; \
 	else echo "check-browser skipped: no Chromium on this machine (apt-get install chromium)"; fi
+	@if $(PY) -m mechlib.pipeline.pdf tools; \
+	then $(MAKE) --no-print-directory pdf check-pdf; \
+	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
 	$(PY) -m mechlib.records determinism --records $(BUILD)/records --rerun $(RERUN)/records
 
 # every notebook executed again, cold (an FE cache of its own), into $(RERUN): `make test`
