@@ -1,6 +1,7 @@
 """Experiment runner: executors (in-process, dask), disk cache, failures, bad designs; sweeps."""
 
 import concurrent.futures as cf
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -47,18 +48,29 @@ def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> No
 
 
 def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
+    import dataclasses
     import subprocess
     import sys
 
+    # every mechlib module that a task's code loads (run one: imports inside functions too)
     code = (
-        "import sys, mechlib.hexflex.model, mechlib.hexflex.nonlinear; "
-        "print(' '.join(m.rsplit('.', 1)[1] + '.py' for m in sys.modules "
-        "if m.startswith('mechlib.hexflex.')))"
+        "import sys, numpy as np; from mechlib.hexflex import experiments as ex; "
+        "from mechlib.hexflex.geometry import HexFlexGeometry; "
+        f"spec = ex.ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
+        "mesh_size=1.0); "
+        "ex._task(spec, 'nonlinear', np.full((1, 6), 0.1), 1); "
+        "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
+        "and getattr(sys.modules[m], '__file__', None)))"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    loaded = set(out.stdout.split())
-    assert {"factor.py", "svk_tangent.py", "sfepy_tl.py"} <= loaded
-    assert loaded <= set(ex._MODEL_SOURCES), sorted(loaded - set(ex._MODEL_SOURCES))
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root
+    )
+    loaded = set(out.stdout.split()) - {"mechlib.hexflex.experiments"}
+    keyed = set(ex.model_modules())
+    assert {"mechlib.hexflex.factor", "mechlib.hexflex.svk_tangent"} <= keyed
+    assert "mechlib.hexflex.experiments" not in keyed  # the runner's own code defines no result
+    assert loaded <= keyed, sorted(loaded - keyed)
 
 
 def test_an_unreadable_cache_file_is_a_miss(tmp_path, monkeypatch) -> None:
@@ -184,13 +196,14 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
-    sweep = linearity.linearity_sweep(model, 5.0 * f, amps)  # the direction is rescaled to 1 N
+    solver = ex.solver_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
+    sweep = linearity.linearity_sweep(solver, 5.0 * f, amps)  # the direction is rescaled to 1 N
     np.testing.assert_array_equal(sweep["amplitude"], amps)
     # the linear poses are the model's linear solve, exactly proportional to the amplitude
     np.testing.assert_allclose(sweep["linear"], model.poses(amps[:, None] * f), rtol=1e-12)
     np.testing.assert_allclose(sweep["linear"], amps[:, None] * sweep["linear"][0] / amps[0])
     # the non-linear poses are the model's own non-linear solve (one load step below 1 N)
-    nl, stats = model.poses_nonlinear(amps[1] * f, steps=1)
+    nl, stats = solver.pose(amps[1] * f, steps=1)
     np.testing.assert_allclose(sweep["nonlinear"][1], nl, rtol=1e-10)
     assert sweep["iterations"][1] == sum(stats.iterations) >= 1
     assert np.all(sweep["factorisations"] >= 1)

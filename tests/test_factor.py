@@ -105,9 +105,9 @@ def test_cholmod_and_superlu_reach_the_same_equilibrium() -> None:
     solver = nonlinear.NonlinearSolver(model)  # cholmod
     u_ch, stats = solver.solve(f)
     # the Cholesky path ran (not a silent LU), with no fallback
-    assert solver._cholesky is not None and solver._cholesky._generation >= 1
-    assert solver._cholesky.fallbacks == 0
-    assert solver._residual(np.full(model.n_dofs, np.nan), np.zeros(model.n_dofs)) is None
+    assert solver.cholesky is not None and solver.cholesky.factorisations >= 1
+    assert solver.cholesky.fallbacks == 0
+    assert solver.residual(np.full(model.n_dofs, np.nan), np.zeros(model.n_dofs)) is None
     assert stats.residual <= nonlinear.NEWTON_TOL
     np.testing.assert_allclose(model.pose_of(u_ch), model.pose_of(u_lu), rtol=1e-8)
     with pytest.raises(ValueError, match="factorisation must be one of"):

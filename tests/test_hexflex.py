@@ -238,7 +238,8 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
     np.testing.assert_allclose(model.poses_plain_sfepy(f[None]), model.poses(f), rtol=1e-7)
     small = 1e-2 * f
     lin = model.poses(small)[0]
-    nonlin, stats = model.poses_nonlinear(small)
+    solver = nonlinear.NonlinearSolver(model)
+    nonlin, stats = solver.pose(small)
     assert len(stats.iterations) == 1 and 1 <= stats.iterations[0] <= 4
     np.testing.assert_allclose(nonlin, lin, rtol=1e-3, atol=1e-6 * abs(lin).max())
     # ... and the difference is of second order: departure ∝ load^p with p = 2 while the load is
@@ -246,11 +247,10 @@ def test_nonlinear_solve_tends_to_linear_at_small_load_and_departs_at_large() ->
     # and 3x as higher orders join in; a first-order error would give p ≈ 1, a third-order 3)
     departure = []
     for scale in (0.1, 0.3):
-        departure.append(np.abs(model.poses_nonlinear(scale * f)[0] - model.poses(scale * f)[0]))
+        departure.append(np.abs(solver.pose(scale * f)[0] - model.poses(scale * f)[0]))
     p = np.log(departure[1].max() / departure[0].max()) / np.log(3.0)
     assert abs(p - 2.0) < 0.1
     big = 3.0 * f
-    solver = nonlinear.NonlinearSolver(model)
     with pytest.raises(nonlinear.ConvergenceError, match=r"max_iterations = 2 .*relative residual"):
         solver.solve(big, max_iterations=2)
     # modified Newton (the default) reaches Newton's equilibrium with fewer factorisations

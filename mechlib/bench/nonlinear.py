@@ -61,7 +61,7 @@ def nonlinear_options() -> dict[str, float]:
     # the pattern's Cholesky analysis, once per model, is not a run's cost; this equilibrium is
     # where the building blocks are timed below
     u_eq, _ = chol.solve(runs[0])
-    lu._batched.values(u_eq)  # the LU solver's first-call buffers, as warm as the Cholesky's
+    lu.batched.values(u_eq)  # the LU solver's first-call buffers, as warm as the Cholesky's
     out: dict[str, float] = {"n_dofs": model.n_dofs, "runs": N_SOLVER_RUNS}
     poses = {}
     for name, (solver, method) in variants.items():
@@ -79,20 +79,20 @@ def nonlinear_options() -> dict[str, float]:
     solver = chol
     load = model.load_vectors() @ runs[0]
     u = u_eq
-    res = solver._residual(u, load)
-    cholesky = PatternCholesky(solver._batched.pattern())
-    tangent = solver._batched.matrix(u)
-    upper = solver._batched.upper_values(u)
+    res = solver.residual(u, load)
+    cholesky = PatternCholesky(solver.batched.pattern())
+    tangent = solver.batched.matrix(u)
+    upper = solver.batched.upper_values(u)
     lu_factor = factorise(tangent)
     blocks = {
         "residual_s": lambda: solver.evaluator.eval_residual(u),
-        "batched_residual_s": lambda: solver._batched.internal_force(u),
+        "batched_residual_s": lambda: solver.batched.internal_force(u),
         "sfepy_tangent_s": lambda: solver.evaluator.eval_tangent_matrix(u),
-        "batched_tangent_s": lambda: solver._batched.matrix(u),
-        "upper_tangent_s": lambda: solver._batched.upper_values(u),  # as the solver does
+        "batched_tangent_s": lambda: solver.batched.matrix(u),
+        "upper_tangent_s": lambda: solver.batched.upper_values(u),  # as the solver does
         "factorisation_s": lambda: factorise(tangent),
         "back_substitution_s": lambda: lu_factor.solve(res),
-        "cholesky_analysis_s": lambda: PatternCholesky(solver._batched.pattern()),
+        "cholesky_analysis_s": lambda: PatternCholesky(solver.batched.pattern()),
         "cholesky_s": lambda: cholesky.factorise_upper(upper),  # as the solver does
     }
     for name, call in blocks.items():
@@ -102,7 +102,7 @@ def nonlinear_options() -> dict[str, float]:
     out["tangent_rel_diff"] = float(
         abs(solver.evaluator.eval_tangent_matrix(u) - tangent).max() / abs(tangent).max()
     )
-    out["cholesky_fallbacks"] = float(chol._cholesky.fallbacks + cholesky.fallbacks)
+    out["cholesky_fallbacks"] = float(chol.cholesky.fallbacks + cholesky.fallbacks)
     # Newton–Krylov: every Newton correction by GMRES on the exact (batched) tangent, right-
     # preconditioned by the factorised linear stiffness (no factorisation after the model's)
     t0 = time.perf_counter()
@@ -132,12 +132,12 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
     scale = np.linalg.norm(load)
     n = model.n_dofs
     u = model.back_substitute(load)  # the first correction, from u = 0, is exact
-    res = solver._residual(u, load)
+    res = solver.residual(u, load)
     if res is None:
         raise RuntimeError("the linear solution inverts an element: no Newton-Krylov start")
     count, newton = [0], 1
     while np.linalg.norm(res) > NEWTON_TOL * scale and newton < KRYLOV_NEWTON:
-        tangent = solver._batched.matrix(u)
+        tangent = solver.batched.matrix(u)
         operator = sla.LinearOperator(
             (n, n), matvec=lambda v, k=tangent: k @ model.back_substitute(v)
         )
@@ -151,7 +151,7 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
             callback_type="pr_norm",
         )
         trial = u - model.back_substitute(y)
-        new = solver._residual(trial, load)
+        new = solver.residual(trial, load)
         newton += 1
         if new is None:
             break  # an element inverted
@@ -166,11 +166,9 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
 
 def _warm_worker(spec) -> int:
     """Build a worker's model and non-linear solver (what its first run would pay)."""
-    from mechlib.hexflex.experiments import model_for
+    from mechlib.hexflex.experiments import solver_for
 
-    model = model_for(spec)
-    model.poses_nonlinear(np.zeros(6))  # builds the solver and its tangent; zero load: no solve
-    return model.n_dofs
+    return solver_for(spec).model.n_dofs
 
 
 def _chapter_spec():
@@ -221,10 +219,10 @@ def chapter_timings() -> dict[str, float | str]:
     for design in (pub.TABLE2_DESIGN, pub.TABLE4_DESIGN, validation):
         ex.run_experiments(spec, design, executor=None, cache_dir=None, progress=False)
     t2 = time.perf_counter()
-    model.poses_nonlinear(np.zeros(6))  # builds the non-linear solver once (no load: no solve)
+    solver = ex.solver_for(spec)  # the solver run_experiments uses in this process
     t2b = time.perf_counter()
     factorisations = [
-        sum(model.poses_nonlinear(f)[1].factorisations) for f in validation[:N_NONLINEAR_SERIAL]
+        sum(solver.pose(f)[1].factorisations) for f in validation[:N_NONLINEAR_SERIAL]
     ]
     t3 = time.perf_counter()
     with ProcessPoolExecutor(max_workers=2) as pool:

@@ -31,24 +31,17 @@ from mechlib.hexflex.model import (
     HexFlexModel,
     check_forces,
 )
+from mechlib.hexflex.nonlinear import NonlinearSolver
 from mechlib.params import check_choice, check_int
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 _CACHE_VERSION = 1
-#: Modules whose source enters the cache key (see :func:`model_code_fingerprint`).
-_MODEL_SOURCES: tuple[str, ...] = (
-    "geometry.py",
-    "mesh.py",
-    "problem.py",
-    "model.py",
-    "nonlinear.py",
-    "svk_tangent.py",
-    "sfepy_tl.py",
-    "factor.py",
-    "pose.py",
-)
+#: The modules a task runs (the linear model and the non-linear solver): their sources, and
+#: those of every mechlib module they import (found by :func:`model_modules`), enter the cache
+#: key (see :func:`model_code_fingerprint`).
+_TASK_MODULES: tuple[str, ...] = ("mechlib.hexflex.model", "mechlib.hexflex.nonlinear")
 
 
 @dataclass(frozen=True)
@@ -164,23 +157,70 @@ class FailedRun:
     reason: str
 
 
+@lru_cache(maxsize=4)
+def solver_for(spec: ModelSpec) -> NonlinearSolver:
+    """The non-linear solver of ``spec``'s model, built once per process (on
+    :func:`model_for`'s model)."""
+    return NonlinearSolver(model_for(spec))
+
+
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    model = model_for(spec)
     if kind == "linear":
-        return model.poses(forces)
-    return np.array([model.poses_nonlinear(f, steps=steps)[0] for f in forces])
+        return model_for(spec).poses(forces)
+    solver = solver_for(spec)
+    return np.array([solver.pose(f, steps=steps)[0] for f in forces])
+
+
+def model_modules() -> tuple[str, ...]:
+    """The mechlib modules a task's results depend on: ``_TASK_MODULES`` and every mechlib
+    module they import, directly or not, at module level or inside a function (read from the
+    sources' import statements), sorted."""
+    import ast
+    import importlib.util
+
+    seen: set[str] = set()
+    todo = list(_TASK_MODULES)
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        origin = importlib.util.find_spec(name).origin
+        for node in ast.walk(ast.parse(Path(origin).read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                targets = [a.name for a in node.names]
+            else:
+                continue
+            todo.extend(t for t in targets if t.startswith("mechlib") and _is_module(t))
+    return tuple(sorted(seen))
+
+
+def _is_module(name: str) -> bool:
+    """True if ``name`` is an importable module (not a name defined inside one)."""
+    import importlib.util
+
+    try:
+        return importlib.util.find_spec(name) is not None
+    except ModuleNotFoundError:  # "package.module.NAME": module is no package
+        return False
 
 
 @lru_cache(maxsize=1)
 def model_code_fingerprint() -> str:
-    """Digest of the sources that define a model's results (geometry, mesh, FE model, pose fit).
+    """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
+    mesh, FE model, solver, pose fit …).
 
     Part of every cache key, so that a change to the mesher or the solver can never return
     results computed by the old code.
     """
+    import importlib.util
+
     h = hashlib.sha256()
-    for name in _MODEL_SOURCES:
-        h.update((Path(__file__).parent / name).read_bytes())
+    for name in model_modules():
+        h.update(name.encode())
+        h.update(Path(importlib.util.find_spec(name).origin).read_bytes())
     return h.hexdigest()[:16]
 
 

@@ -72,6 +72,11 @@ class PatternCholesky:
         self._generation = 0
         self.fallbacks = 0
 
+    @property
+    def factorisations(self) -> int:
+        """Numeric factorisations done so far (the current factor is the last one)."""
+        return self._generation
+
     def factorise(self, matrix: sp.sparray | sp.spmatrix) -> Callable[[np.ndarray], np.ndarray]:
         """Factorise a symmetric matrix of the pattern; returns ``solve(rhs) -> x`` for rhs
         (n,). Only its upper triangle is read (by the LU fallback too).

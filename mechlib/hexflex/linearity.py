@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.hexflex.model import MAX_FORCE_N, HexFlexModel
+from mechlib.hexflex.model import MAX_FORCE_N
+from mechlib.hexflex.nonlinear import NonlinearSolver
 from mechlib.params import check_increasing, check_int, check_matrix
 
 #: The linear model's error budget of the chapter's sweep [%]: where the linear model stops
@@ -18,14 +19,15 @@ ERROR_BUDGET_PCT = 1.0
 
 
 def linearity_sweep(
-    model: HexFlexModel, direction: object, amplitudes: object, steps: int = 1
+    solver: NonlinearSolver, direction: object, amplitudes: object, steps: int = 1
 ) -> dict[str, np.ndarray]:
     """Non-linear against linear poses along one force direction scaled by several amplitudes.
 
     Parameters
     ----------
-    model : HexFlexModel
-        A Q2 model (its linear and non-linear solves are compared on the same mesh).
+    solver : NonlinearSolver
+        The non-linear solver of a Q2 model (``solver.model``: its linear and non-linear solves
+        are compared on the same mesh).
     direction : array_like (6,)
         Force direction; scaled so that its largest |component| is 1 N.
     amplitudes : array_like
@@ -51,11 +53,12 @@ def linearity_sweep(
     if amps.ndim != 1 or amps.size == 0 or np.any(~(amps > 0)) or np.any(amps > MAX_FORCE_N):
         raise ValueError(f"amplitudes must lie in (0, {MAX_FORCE_N:g}] N, got {amps.tolist()}")
     steps = check_int("steps", steps, low=1, high=100)
+    model = solver.model
     lin = model.poses(amps[:, None] * d)
     nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
     facts = np.zeros(len(amps), dtype=int)
     for i, a in enumerate(amps):
-        nonlin[i], stats = model.poses_nonlinear(a * d, steps=max(1, int(np.ceil(steps * a))))
+        nonlin[i], stats = solver.pose(a * d, steps=max(1, int(np.ceil(steps * a))))
         iters[i], facts[i] = sum(stats.iterations), sum(stats.factorisations)
     return {
         "amplitude": amps,

@@ -4,8 +4,8 @@
 fit); this module assembles its stiffness once, factorises it, and answers load cases by
 back-substitution: a load case costs one solve, and the 6 × 6 compliance (pose per unit actuator
 force, µm/N and µrad/N, columns in the order of Eq 4) six of them. The geometrically non-linear
-solve lives in :mod:`mechlib.hexflex.nonlinear`, the mesh study in
-:mod:`mechlib.hexflex.convergence`.
+solve is built on a model, ``NonlinearSolver(model)`` (:mod:`mechlib.hexflex.nonlinear`; the
+model knows nothing of it), the mesh study lives in :mod:`mechlib.hexflex.convergence`.
 """
 
 from __future__ import annotations
@@ -97,7 +97,6 @@ class HexFlexModel:
         self.timings.update(mesh=t1 - t0, setup=t2 - t1, assembly=t3 - t2, factorisation=t4 - t3)
         self.cell_parts = self.fe.cell_parts
         self._compliance: np.ndarray | None = None
-        self._nonlinear = None
 
     def _assemble(self):
         """Tangent (= stiffness) matrix of the Problem's own equations, reduced to free DOFs."""
@@ -149,16 +148,6 @@ class HexFlexModel:
     def poses(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
         return self.pose_of(self.solve_reduced(forces)).T
-
-    def poses_nonlinear(self, forces: object, steps: int = 1, method: str = "modified"):
-        """Pose (6,) of the geometrically non-linear solution and what the solve spent
-        (:class:`mechlib.hexflex.nonlinear.SolveStats`; see ``NonlinearSolver.solve``)."""
-        from mechlib.hexflex import nonlinear
-
-        if self._nonlinear is None:
-            self._nonlinear = nonlinear.NonlinearSolver(self)
-        u, stats = self._nonlinear.solve(forces, steps=steps, method=method)
-        return self.pose_of(u), stats
 
     def poses_plain_sfepy(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) by SfePy's own ``Problem.solve()``, one full solve per load case.

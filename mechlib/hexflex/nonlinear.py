@@ -125,13 +125,17 @@ class NonlinearSolver:
             )
         self.model = model
         self.tangent = check_choice("tangent", tangent, TANGENTS)
-        self._batched = SVKTangent(model) if self.tangent == "batched" else None
+        #: the batched tangent and residual (``None`` with ``tangent="sfepy"``)
+        self.batched = SVKTangent(model) if self.tangent == "batched" else None
         self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
-        self._cholesky: PatternCholesky | None = None
+        #: the Cholesky of the tangent's pattern (``None`` until a CHOLMOD factorisation is
+        #: needed with SfePy's tangent, and always with SuperLU); its ``fallbacks`` count the
+        #: tangents that were not positive definite
+        self.cholesky: PatternCholesky | None = None
         self._lock = threading.Lock()
-        if self._batched is not None and self.factorisation == "cholmod":
+        if self.batched is not None and self.factorisation == "cholmod":
             # the pattern's analysis (ordering, supernodes) once, before any run (≈ 2 s)
-            self._cholesky = PatternCholesky(self._batched.pattern())
+            self.cholesky = PatternCholesky(self.batched.pattern())
 
     @functools.cached_property
     def evaluator(self):
@@ -139,34 +143,46 @@ class NonlinearSolver:
         needs it only for comparisons)."""
         return tl_evaluator(self.model, register_svk_term())
 
-    def _residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
-        """Residual at ``u``, or ``None`` where an element inverts (SfePy's "warp violation")
-        or ``u`` is not finite."""
+    def residual(self, u: np.ndarray, target: np.ndarray) -> np.ndarray | None:
+        """Residual [N] (internal force minus ``target``) at the reduced displacements ``u``
+        [mm], or ``None`` where an element inverts (SfePy's "warp violation") or ``u`` is not
+        finite."""
         if not np.all(np.isfinite(u)):
             return None
-        if self._batched is not None:  # the same vector as SfePy's, batched (make bench)
-            force = self._batched.internal_force(u)
+        if self.batched is not None:  # the same vector as SfePy's, batched (make bench)
+            force = self.batched.internal_force(u)
             return None if force is None else force - target
         try:
             return self.evaluator.eval_residual(u).copy() - target
         except ValueError:
             return None
 
-    def _factorised_tangent(self, u: np.ndarray):
+    def tangent_matrix(self, u: np.ndarray) -> sp.csr_array:
+        """The tangent stiffness [N/mm] at ``u`` [mm] (CSR, sorted indices), by the solver's
+        ``tangent`` choice."""
+        if self.batched is not None:
+            return self.batched.matrix(u)
+        matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u), copy=True)
+        matrix.sort_indices()
+        return matrix
+
+    def factorised_tangent(self, u: np.ndarray):
+        """A function ``rhs -> K(u)⁻¹ rhs`` for the tangent at ``u`` [mm], factorised as the
+        solver's ``factorisation`` says (at ``u = 0`` the linear model's own factorisation).
+
+        With CHOLMOD the factor is kept in one object: a later call invalidates the function
+        returned before (it then raises ``RuntimeError``).
+        """
         if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
             return self.model.back_substitute
-        if self._batched is not None and self._cholesky is not None:  # the default
-            return self._cholesky.factorise_upper(self._batched.upper_values(u))
-        if self.tangent == "sfepy":
-            matrix = sp.csr_array(self.evaluator.eval_tangent_matrix(u), copy=True)
-            matrix.sort_indices()
-        else:
-            matrix = self._batched.matrix(u)
+        if self.batched is not None and self.cholesky is not None:  # the default
+            return self.cholesky.factorise_upper(self.batched.upper_values(u))
+        matrix = self.tangent_matrix(u)
         if self.factorisation == "superlu":
             return factorise(matrix).solve
-        if self._cholesky is None:
-            self._cholesky = PatternCholesky(matrix)
-        return self._cholesky.factorise(matrix)
+        if self.cholesky is None:
+            self.cholesky = PatternCholesky(matrix)
+        return self.cholesky.factorise(matrix)
 
     def solve(
         self,
@@ -218,6 +234,14 @@ class NonlinearSolver:
         with self._lock:  # one solve at a time: the tangent buffers and the factor are shared
             return self._solve(forces, steps, tol, max_iterations, method)
 
+    def pose(
+        self, forces: object, steps: int = 1, method: str = "modified"
+    ) -> tuple[np.ndarray, SolveStats]:
+        """Stage pose (6,) [µm, µrad] of the non-linear equilibrium under ``forces`` (6,) [N]
+        and what the solve spent (see :meth:`solve`)."""
+        u, stats = self.solve(forces, steps=steps, method=method)
+        return self.model.pose_of(u), stats
+
     def _solve(
         self, forces: object, steps: int, tol: float, max_iterations: int, method: str
     ) -> tuple[np.ndarray, SolveStats]:
@@ -262,7 +286,7 @@ class NonlinearSolver:
         max_iterations of :meth:`solve`). The modified method gives up (``_GaveUp``) rather than
         factorise more than ``MODIFIED_MAX_FACTORISATIONS`` tangents."""
         k, steps, forces_list, scale, tol, max_iterations = where
-        res = self._residual(u, target)
+        res = self.residual(u, target)
         if res is None:
             raise ConvergenceError(
                 f"an element inverted at the start of load step {k}/{steps} for forces "
@@ -286,12 +310,12 @@ class NonlinearSolver:
                 if method == "modified" and facts == MODIFIED_MAX_FACTORISATIONS:
                     raise _GaveUp
                 linear = not u.any()  # the linear stiffness: no good beyond one step
-                solve, fresh = self._factorised_tangent(u), True
+                solve, fresh = self.factorised_tangent(u), True
                 facts += int(not linear)
                 mixer.reset()
             step = mixer.step(u, -solve(res))
             trial = u + step
-            new = self._residual(trial, target)
+            new = self.residual(trial, target)
             new_norm = np.inf if new is None else float(np.linalg.norm(new))
             if not np.isfinite(new_norm):  # inverted elements, or an overflow to inf/NaN
                 new, new_norm = None, np.inf
