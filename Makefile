@@ -66,11 +66,12 @@ $(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard 
 	@test "$(PROFILE)" = ci || test -d $(PROFILE_DIR) || { echo "no profile $(PROFILE_DIR)"; exit 2; }
 	@mkdir -p $(BUILD)/executed $(BUILD)/records
 	@echo "executing $< (profile $(PROFILE))"
-	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(VENV)/bin/papermill -k python3 --cwd notebooks \
-	  --no-progress-bar $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml) $< $@.tmp
+	$(PY) -m mechlib.records execute --notebook $< --out $@.tmp --records $(BUILD)/records \
+	  -- $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml)
 	mv $@.tmp $@
 
-# the DOE chapter runs on the geometry that the HexFlex model notebook identifies (its record)
+# the DOE chapter runs on the geometry and mesh that the HexFlex model notebook identifies: its
+# record fills those parameters (mechlib.runs.CHAPTER_INPUTS)
 $(BUILD)/executed/virtual_experiments.ipynb: $(BUILD)/executed/hexflex_model.ipynb
 
 notebooks: $(EXECUTED)
@@ -125,7 +126,8 @@ rerun: $(STAMP)
 run: $(STAMP)
 	@test -n "$(NB)" || { echo "usage: make run NB=<notebook name> ARGS='-p name value ...'"; exit 2; }
 	@test -f notebooks/$(NB).ipynb || { echo "no notebook notebooks/$(NB).ipynb; have: $(NB_NAMES)"; exit 2; }
-	$(PY) -m mechlib.runs --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs -- $(ARGS)
+	$(PY) -m mechlib.runs --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs --records $(BUILD)/records \
+	  -- $(ARGS)
 
 references: $(EXECUTED)
 	@test "$(PROFILE)" = ci || { echo "tests/references hold the ci profile; got PROFILE=$(PROFILE)"; exit 2; }

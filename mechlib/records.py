@@ -33,23 +33,14 @@ import numpy as np
 
 from mechlib import report
 from mechlib.params import check_float
-
-REPO_ROOT = Path(__file__).resolve().parents[1]
-RECORDS_ENV = "MECHLIB_RECORDS"
-FE_CACHE_ENV = "MECHLIB_FE_CACHE"
-#: set to "1": :func:`recorded_value` reads ``records_dir()`` only, never the default build's
-#: records (the determinism re-run, which must not read the first run's)
-RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
-
-
-def records_dir() -> Path:
-    """Folder that records are written to: ``$MECHLIB_RECORDS`` or ``<repo>/build/records``."""
-    return Path(os.environ.get(RECORDS_ENV, REPO_ROOT / "build" / "records"))
-
-
-def fe_cache_dir() -> Path:
-    """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
-    return Path(os.environ.get(FE_CACHE_ENV, REPO_ROOT / "build" / "cache" / "experiments"))
+from mechlib.paths import (  # noqa: F401 (re-exported until the build wing moves out)
+    FE_CACHE_ENV,
+    RECORDS_ENV,
+    RECORDS_STRICT_ENV,
+    REPO_ROOT,
+    fe_cache_dir,
+    records_dir,
+)
 
 
 def _plain(value: Any) -> Any:
@@ -344,7 +335,7 @@ def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
         If a notebook fails, naming it and its executed copy (which holds the traceback), with
         the end of papermill's error output.
     """
-    from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
+    from mechlib.runs import input_arguments, papermill_command  # here: runs imports this module
 
     out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
     shutil.rmtree(out, ignore_errors=True)
@@ -359,7 +350,8 @@ def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
     )
     for nb in sorted(Path(notebooks).glob("*.ipynb")):
         print(f"re-run: executing {nb.name}", flush=True)
-        cmd = papermill_command(nb, out / nb.name, python=python)
+        inputs = input_arguments(nb.stem, out / "records", strict=True)
+        cmd = papermill_command(nb, out / nb.name, inputs, python=python)
         done = subprocess.run(cmd, env=env, capture_output=True, text=True)
         if done.returncode != 0:
             tail = "\n".join(done.stderr.splitlines()[-20:])
@@ -400,8 +392,20 @@ def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable
         return rerun_differences(records, Path(tmp) / "records", notebooks)
 
 
+def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = ()) -> int:
+    """Execute ``notebook`` into ``output`` with papermill ``args``, its record into ``records``
+    and its chapter inputs (:func:`mechlib.runs.input_arguments`) read from there; papermill's
+    exit code."""
+    from mechlib.runs import given_parameters, input_arguments, papermill_command
+
+    records = Path(records).resolve()
+    inputs = input_arguments(Path(notebook).stem, records, given_parameters(args), strict=True)
+    cmd = papermill_command(Path(notebook), Path(output), [*inputs, *args])
+    return subprocess.run(cmd, env=dict(os.environ, **{RECORDS_ENV: str(records)})).returncode
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Command-line entry point (``update``, ``rerun`` or ``determinism``)."""
+    """Command-line entry point (``update``, ``rerun``, ``determinism`` or ``execute``)."""
     parser = argparse.ArgumentParser(prog="python -m mechlib.records")
     sub = parser.add_subparsers(dest="cmd", required=True)
     up = sub.add_parser("update", help="re-record references from build/records")
@@ -416,7 +420,15 @@ def main(argv: list[str] | None = None) -> int:
     again = sub.add_parser("rerun", help="execute every notebook again, cold, into a folder")
     again.add_argument("--out", type=Path, required=True)
     again.add_argument("--notebooks", type=Path, default=REPO_ROOT / "notebooks")
+    ex = sub.add_parser("execute", help="execute one notebook of a build, its inputs filled")
+    ex.add_argument("--notebook", type=Path, required=True)
+    ex.add_argument("--out", type=Path, required=True)
+    ex.add_argument("--records", type=Path, required=True)
+    ex.add_argument("papermill_args", nargs=argparse.REMAINDER)
     args = parser.parse_args(argv)
+    if args.cmd == "execute":
+        extra = [a for a in args.papermill_args if a != "--"]
+        return execute(args.notebook, args.out, args.records, extra)
     if args.cmd == "update":
         for line in update_references(args.records, args.references):
             print(line)

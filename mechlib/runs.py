@@ -34,7 +34,8 @@ from pathlib import Path
 
 import yaml
 
-from mechlib.records import RECORDS_ENV
+from mechlib.paths import DEFAULT_BUILD, RECORDS_ENV, RECORDS_STRICT_ENV
+from mechlib.records import load
 
 #: papermill's options that set notebook parameters, and how many values each takes.
 PARAMETER_OPTIONS: dict[str, int] = {
@@ -48,6 +49,16 @@ PARAMETER_OPTIONS: dict[str, int] = {
     "--parameters_file": 1,
     "-b": 1,
     "--parameters_base64": 1,
+}
+#: Chapter inputs: notebook -> {parameter: (upstream notebook, record key)}. Whoever executes the
+#: notebook passes each parameter the upstream notebook's recorded value (unless the run gives it);
+#: a key ending in ``.*`` passes every value under that prefix, as a mapping by the rest of its
+#: key (``geometry.thickness`` -> ``{"thickness": ...}``).
+CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
+    "virtual_experiments": {
+        "geometry": ("hexflex_model", "geometry.*"),
+        "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
+    },
 }
 #: Tag of the cell whose assignments are a notebook's parameters (papermill's convention).
 PARAMETERS_TAG = "parameters"
@@ -90,6 +101,81 @@ def papermill_command(
         str(output),
         *args,
     ]
+
+
+def upstream_record(notebook: str, records: Path, *, strict: bool | None = None) -> Path:
+    """The record of ``notebook`` in ``records``, else in the default build's ``build/records`` —
+    and then it says so on stderr (``make run`` into its own folder reads the default build's
+    upstream record; a record of another folder is never taken without a word).
+
+    Parameters
+    ----------
+    notebook : str
+        The upstream notebook's name.
+    records : Path
+        Records folder of this build or run.
+    strict : bool, optional
+        Read ``records`` only (the determinism re-run); default: ``$MECHLIB_RECORDS_STRICT=1``.
+
+    Raises
+    ------
+    FileNotFoundError
+        When that notebook has not been executed, naming the command that does it.
+    """
+    strict = os.environ.get(RECORDS_STRICT_ENV) == "1" if strict is None else strict
+    places = [Path(records) / f"{notebook}.json"]
+    if not strict:
+        places.append(DEFAULT_BUILD / "records" / f"{notebook}.json")
+    path = next((p for p in places if p.exists()), None)
+    if path is None:
+        raise FileNotFoundError(
+            f"no record of notebook {notebook!r} in {' or '.join(str(p.parent) for p in places)}: "
+            f"execute it first (make notebooks)"
+        )
+    if path != places[0]:
+        print(
+            f"note: {notebook}'s record taken from {path} (none in {places[0].parent})",
+            file=sys.stderr,
+        )
+    return path
+
+
+def chapter_inputs(
+    notebook: str, records: Path, given: Sequence[str] = (), *, strict: bool | None = None
+) -> dict[str, object]:
+    """The parameters of ``notebook`` that other chapters' records fill (:data:`CHAPTER_INPUTS`),
+    except those named in ``given`` (a run that sets one itself keeps its value).
+
+    Raises
+    ------
+    FileNotFoundError
+        An upstream notebook has no record (see :func:`upstream_record`).
+    KeyError
+        An upstream record lacks the key, naming the keys it has.
+    """
+    values: dict[str, object] = {}
+    for name, (upstream, key) in CHAPTER_INPUTS.get(notebook, {}).items():
+        if name in given:
+            continue
+        path = upstream_record(upstream, records, strict=strict)
+        recorded = {k: v["value"] for k, v in load(path)["values"].items()}
+        if key.endswith(".*"):
+            prefix = key[:-1]
+            found = {k[len(prefix) :]: v for k, v in recorded.items() if k.startswith(prefix)}
+        else:
+            found = recorded.get(key)
+        if not found:
+            raise KeyError(f"{path} holds no value {key!r} (input {name!r} of {notebook})")
+        values[name] = found
+    return values
+
+
+def input_arguments(
+    notebook: str, records: Path, given: Sequence[str] = (), *, strict: bool | None = None
+) -> list[str]:
+    """papermill arguments (``-y``) that pass ``notebook`` its :func:`chapter_inputs`."""
+    values = chapter_inputs(notebook, records, given, strict=strict)
+    return ["-y", yaml.safe_dump(values, sort_keys=False)] if values else []
 
 
 def run_folder_name(papermill_args: list[str]) -> str:
@@ -297,12 +383,19 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m mechlib.runs")
     parser.add_argument("--notebook", type=Path, required=True)
     parser.add_argument("--out", type=Path, required=True)
+    parser.add_argument(
+        "--records",
+        type=Path,
+        default=DEFAULT_BUILD / "records",
+        help="records of the build whose chapters give this notebook its inputs",
+    )
     parser.add_argument("papermill_args", nargs=argparse.REMAINDER)
     args = parser.parse_args(argv)
     extra = [a for a in args.papermill_args if a != "--"]
     try:
-        check_parameter_names(extra, notebook_parameters(args.notebook), str(args.notebook))
-    except (OSError, ValueError) as err:
+        given = check_parameter_names(extra, notebook_parameters(args.notebook), str(args.notebook))
+        inputs = input_arguments(args.notebook.stem, args.records, given)
+    except (OSError, ValueError, KeyError) as err:
         print(f"refused, nothing was run: {err}", file=sys.stderr)
         return 2
     folder = (args.out / args.notebook.stem / run_folder_name(extra)).resolve()
@@ -310,7 +403,7 @@ def main(argv: list[str] | None = None) -> int:
     out_nb = folder / args.notebook.name
     out_nb.unlink(missing_ok=True)  # a failure is read from this run's notebook, never an older one
     env = dict(os.environ, **{RECORDS_ENV: str(folder)})
-    cmd = papermill_command(args.notebook, out_nb, extra)
+    cmd = papermill_command(args.notebook, out_nb, [*inputs, *extra])
     with subprocess.Popen(
         cmd, env=env, stderr=subprocess.PIPE, encoding="utf-8", errors="replace"
     ) as proc:

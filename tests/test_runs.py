@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 import pytest
+import yaml
 
 from mechlib import runs
 from mechlib.records import REPO_ROOT
@@ -177,3 +178,39 @@ def test_a_misspelled_parameter_stops_make_run_before_anything_runs(tmp_path: Pa
     assert "refused, nothing was run: unknown parameter 'sigm' (did you mean 'sigma'?)" in err
     assert "defines sigma" in err
     assert not (tmp_path / "runs").exists()
+
+
+def test_a_chapter_gets_its_inputs_from_the_upstream_record(tmp_path: Path, capsys) -> None:
+    references = REPO_ROOT / "tests" / "references"  # copies of records, as a records folder
+    model = json.loads((references / "hexflex_model.json").read_text())["values"]
+    inputs = runs.chapter_inputs("virtual_experiments", references, strict=True)
+    assert inputs["mesh_fraction"] == model["model.mesh_fraction"]["value"]
+    assert inputs["geometry"]["thickness"] == model["geometry.thickness"]["value"]
+    assert sorted(inputs["geometry"]) == sorted(
+        k.removeprefix("geometry.") for k in model if k.startswith("geometry.")
+    )
+    # a value the run gives itself is kept; a notebook without inputs gets none
+    assert list(runs.chapter_inputs("virtual_experiments", references, ["geometry"])) == [
+        "mesh_fraction"
+    ]
+    assert runs.input_arguments("published_doe", tmp_path) == []
+    # the -y text papermill reads back gives the recorded floats exactly
+    option, text = runs.input_arguments("virtual_experiments", references, strict=True)
+    assert option == "-y" and yaml.safe_load(text) == inputs
+    with pytest.raises(FileNotFoundError, match=r"'hexflex_model'.*make notebooks"):
+        runs.chapter_inputs("virtual_experiments", tmp_path, strict=True)
+    assert capsys.readouterr().err == ""
+
+
+def test_a_run_reads_the_default_build_inputs_with_a_note(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys
+) -> None:
+    default = tmp_path / "build"
+    (default / "records").mkdir(parents=True)
+    record = REPO_ROOT / "tests" / "references" / "hexflex_model.json"
+    (default / "records" / "hexflex_model.json").write_bytes(record.read_bytes())
+    monkeypatch.setattr(runs, "DEFAULT_BUILD", default)
+    assert "geometry" in runs.chapter_inputs("virtual_experiments", tmp_path / "run")
+    assert "hexflex_model's record taken from" in capsys.readouterr().err
+    with pytest.raises(FileNotFoundError):
+        runs.chapter_inputs("virtual_experiments", tmp_path / "run", strict=True)
