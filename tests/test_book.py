@@ -8,9 +8,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from mechlib import bookbuild, report
-from mechlib.book import artefacts, cells, reportpage
-from mechlib.records import REPO_ROOT
+from mechlib import report
+from mechlib.paths import REPO_ROOT
+from mechlib.pipeline import bookbuild
+from mechlib.pipeline.book import artefacts, cells, reportpage
 
 FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
 

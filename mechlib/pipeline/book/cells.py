@@ -21,7 +21,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from mechlib.book.artefacts import Section, parse
+from mechlib.pipeline.book.artefacts import Section, parse
 
 #: Tags that show a reader-facing cell as written (papermill's parameter cells).
 KEEP_VISIBLE = frozenset({"parameters", "injected-parameters"})
