@@ -112,3 +112,8 @@ def test_the_makefile_reexecutes_notebooks_on_a_science_change_only() -> None:
 def test_no_two_modules_import_each_other() -> None:
     checked = {m: i - UNCHECKED for m, i in GRAPH.items() if m not in UNCHECKED}
     assert [c for c in circles(checked) if c not in TOLERATED_CIRCLES] == []
+
+
+def test_every_module_is_under_400_lines() -> None:
+    long = {m: n for m, p in MODULES.items() if (n := len(p.read_text().splitlines())) >= 400}
+    assert long == {}
