@@ -16,12 +16,18 @@ PROFILE     ?= ci
 BUILD       := build$(if $(filter-out ci,$(PROFILE)),/$(PROFILE))
 PROFILE_DIR := notebooks/profiles/$(PROFILE)
 RERUN       := $(BUILD)/rerun
-NBS         := $(sort $(wildcard notebooks/*.ipynb))
-NB_NAMES    := $(notdir $(basename $(NBS)))
-# what the notebooks import: the book tooling (mechlib/book/, mechlib/bookbuild.py) is not, so a
-# change there rebuilds the book without re-executing the notebooks
-MECHLIB_SRC := $(filter-out mechlib/bookbuild.py mechlib/book/%,$(shell find mechlib -name '*.py' 2>/dev/null))
+# the chapters in execution order, and which chapter's record gives another its inputs: declared
+# once, in mechlib/pipeline/chapters.py (it runs on the standard library alone)
+CHAPTERS    := mechlib/pipeline/chapters.py
+NB_NAMES    := $(shell $(PYTHON_BOOT) $(CHAPTERS) order)
+NB_EDGES    := $(shell $(PYTHON_BOOT) $(CHAPTERS) edges)
+# what the notebooks import: the science wing, mechlib minus the build wing (mechlib/pipeline/),
+# so a change in the build wing rebuilds the book without re-executing the notebooks
+MECHLIB_SRC := $(filter-out mechlib/pipeline/%,$(shell find mechlib -name '*.py' 2>/dev/null))
 EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
+PIPELINE    := $(PY) -m mechlib.pipeline
+# the targets that compare with tests/references run the ci profile only
+REQUIRE_CI   = @test "$(PROFILE)" = ci || { echo "make $@ runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
 export PYTHONHASHSEED := 0
 export PYDEVD_DISABLE_FILE_VALIDATION := 1
 # .venv is a build product: let Python cache its bytecode there. With PYTHONDONTWRITEBYTECODE set
@@ -68,19 +74,21 @@ $(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard 
 	@test "$(PROFILE)" = ci || test -d $(PROFILE_DIR) || { echo "no profile $(PROFILE_DIR)"; exit 2; }
 	@mkdir -p $(BUILD)/executed $(BUILD)/records
 	@echo "executing $< (profile $(PROFILE))"
-	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(VENV)/bin/papermill -k python3 --cwd notebooks \
-	  --no-progress-bar $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml) $< $@.tmp
+	$(PIPELINE) execute --notebook $< --out $@.tmp --records $(BUILD)/records \
+	  -- $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml)
 	mv $@.tmp $@
 
-# the DOE chapter runs on the geometry that the HexFlex model notebook identifies (its record)
-$(BUILD)/executed/virtual_experiments.ipynb: $(BUILD)/executed/hexflex_model.ipynb
+# a chapter executes after those whose records fill its inputs (the DOE chapter runs on the
+# geometry and mesh that the HexFlex model chapter identifies)
+$(foreach e,$(NB_EDGES),$(eval $(BUILD)/executed/$(word 1,$(subst :, ,$(e))).ipynb: \
+  $(BUILD)/executed/$(word 2,$(subst :, ,$(e))).ipynb))
 
 notebooks: $(EXECUTED)
 
 # The HTML is rebuilt from scratch (seconds): an incremental Sphinx build re-reports no warning of
 # an unchanged page and skips copying book/_static when no page changed.
 book: $(EXECUTED)
-	$(PY) -m mechlib.bookbuild --executed $(BUILD)/executed --records $(BUILD)/records --book book
+	$(PIPELINE) book --executed $(BUILD)/executed --records $(BUILD)/records --book book
 	rm -rf book/_build
 	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet
 	@echo "Book: $(abspath book/_build/html/index.html)"
@@ -99,10 +107,10 @@ check-book: $(STAMP)
 # every built page in headless Chromium from file:// with the network off: math typeset, images
 # loaded, glued numbers present (after `make book`)
 check-browser: $(STAMP)
-	$(PY) -m mechlib.book.browser --html book/_build/html --book book
+	$(PIPELINE) check-browser --html book/_build/html --book book
 
 test: $(STAMP)
-	@test "$(PROFILE)" = ci || { echo "make test runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
+	$(REQUIRE_CI)
 	$(VENV)/bin/ruff check mechlib tests notebooks
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
 	$(MAKE) --no-print-directory unit
@@ -112,29 +120,30 @@ test: $(STAMP)
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory book
 	$(MAKE) --no-print-directory check-book
-	@if $(PY) -c 'import sys; from mechlib.book.browser import find_browser; sys.exit(not find_browser())'; \
+	@if $(PY) -c 'import sys; from mechlib.pipeline.book.browser import find_browser; sys.exit(not find_browser())'; \
 	then $(MAKE) --no-print-directory check-browser; \
 	else echo "check-browser skipped: no Chromium on this machine (apt-get install chromium)"; fi
 	@if $(PY) -m mechlib.pipeline.pdf tools; \
 	then $(MAKE) --no-print-directory pdf check-pdf; \
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
-	$(PY) -m mechlib.records determinism --records $(BUILD)/records --rerun $(RERUN)/records
+	$(PIPELINE) determinism --records $(BUILD)/records --rerun $(RERUN)/records
 
 # every notebook executed again, cold (an FE cache of its own), into $(RERUN): `make test`
 # requires its records to be byte-identical to the first run's
 rerun: $(STAMP)
-	@test "$(PROFILE)" = ci || { echo "make rerun runs the ci profile; got PROFILE=$(PROFILE)"; exit 2; }
-	$(PY) -m mechlib.records rerun --out $(abspath $(RERUN))
+	$(REQUIRE_CI)
+	$(PIPELINE) rerun --out $(abspath $(RERUN))
 
 # --- one notebook with new parameters ---------------------------------------------------------
 run: $(STAMP)
 	@test -n "$(NB)" || { echo "usage: make run NB=<notebook name> ARGS='-p name value ...'"; exit 2; }
 	@test -f notebooks/$(NB).ipynb || { echo "no notebook notebooks/$(NB).ipynb; have: $(NB_NAMES)"; exit 2; }
-	$(PY) -m mechlib.runs --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs -- $(ARGS)
+	$(PIPELINE) run --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs --records $(BUILD)/records \
+	  -- $(ARGS)
 
 references: $(EXECUTED)
-	@test "$(PROFILE)" = ci || { echo "tests/references hold the ci profile; got PROFILE=$(PROFILE)"; exit 2; }
-	$(PY) -m mechlib.records update --records $(BUILD)/records --references tests/references
+	$(REQUIRE_CI)
+	$(PIPELINE) update --records $(BUILD)/records --references tests/references
 
 # the non-linear and chapter sections time the geometry the HexFlex notebook identifies (its
 # record); without it they would fall back to the bench geometry, a different model

@@ -9,8 +9,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from numbers import Integral, Real
+from typing import TypeVar
 
 import numpy as np
+
+T = TypeVar("T")
 
 
 def check_int(name: str, value: object, *, low: int | None = None, high: int | None = None) -> int:
@@ -85,6 +88,32 @@ def check_float(
     too_low = low is not None and (value <= low if low_open else value < low)
     if too_low or (high is not None and value > high):
         raise ValueError(f"{name} must be{_range_text(low, high, low_open)}, got {value!r}")
+    return value
+
+
+def check_given(name: str, value: T | None, upstream: str) -> T:
+    """Return ``value`` if it was given: ``None`` is a chapter input that nobody passed.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : object or None
+        The parameter's value; ``None`` (its default) means not given.
+    upstream : str
+        The notebook whose record the build fills it from.
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is ``None``, saying where the value comes from and how to give it.
+    """
+    if value is None:
+        raise ValueError(
+            f"{name} was not given: it is an input from the {upstream} notebook's record, which "
+            f"the build passes (make notebooks, make run); to run this notebook by hand, give it "
+            f"with papermill's -p or -y"
+        )
     return value
 
 

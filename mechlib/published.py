@@ -30,11 +30,12 @@ import numpy as np
 FACTORS: tuple[str, ...] = ("T1D1", "T1D2", "T2D1", "T2D2", "T3D1", "T3D2")
 """Factor (actuator) names in the order of Eq 4."""
 
-RESPONSES: tuple[str, ...] = ("x", "y", "z", "theta_x", "theta_y", "theta_z")
-"""Pose components in the order of Eq 5."""
+RESPONSES: tuple[str, ...] = ("x", "y", "z", "θx", "θy", "θz")
+"""Pose components (the responses) in the order of Eq 5: the one spelling of their labels."""
 
-RESPONSE_UNITS_AS_PRINTED: tuple[str, ...] = ("um", "um", "um", "urad", "urad", "urad")
-"""Column-header units of Tables 2 and 4 (both print µm and µrad)."""
+RESPONSE_UNITS: tuple[str, ...] = ("µm", "µm", "µm", "µrad", "µrad", "µrad")
+"""Units of the pose components: Eq 5's, and the column headers of Tables 2 and 4 (but see
+:func:`table2_responses_um_urad`)."""
 
 
 def printed_resolution(text: str) -> np.ndarray:
@@ -108,6 +109,17 @@ TABLE2 = parse_printed(_TABLE2)
 TABLE2_DESIGN = TABLE2[:, :6]
 TABLE2_RESPONSES = TABLE2[:, 6:]
 TABLE2_RESPONSES_RESOLUTION = printed_resolution(_TABLE2)[:, 6:]
+#: Table 2's printed numbers per unit of its header: it is printed in nm and mrad, not the µm and
+#: µrad its header says (Eq 8 applied to its forces gives translations ≈ 1000 times smaller and
+#: rotations ≈ 1000 times larger; the published-data page measures these ratios).
+TABLE2_PRINTED_PER_HEADER_UNIT = np.array([1e3, 1e3, 1e3, 1e-3, 1e-3, 1e-3])
+
+
+def table2_responses_um_urad() -> np.ndarray:
+    """Table 2's responses (12, 6) converted to the µm and µrad of its header, of Table 4 and of
+    Eq 8: the printed values divided by :data:`TABLE2_PRINTED_PER_HEADER_UNIT`."""
+    return TABLE2_RESPONSES / TABLE2_PRINTED_PER_HEADER_UNIT
+
 
 # --- Table 3: Lenth's analysis, as printed -------------------------------------------------
 # rows are listed in the printed order; columns x y z [µm] θx θy θz [µrad] (printed units).

@@ -1,29 +1,16 @@
-"""Records of key numbers: written by notebooks, compared with committed references.
+"""Records of key numbers: what a notebook writes, for the build to compare and publish.
 
 A notebook creates one :class:`Recorder`, records each key number together with the tolerance
 that the numerics can guarantee — in the same call glued for the page's text and completed into
 its reproduction-report row (:mod:`mechlib.report`) — and saves
-``build/records/<notebook>.json``. The committed
-reference ``tests/references/<notebook>.json`` is a copy of such a file, made by
-``make references`` from a fresh run (never typed). :func:`compare` checks a run against its
-reference with the reference's per-value tolerances.
-
-Command line (used by the Makefile)::
-
-    python -m mechlib.records update --records build/records --references tests/references
-    python -m mechlib.records rerun --out build/rerun
-    python -m mechlib.records determinism --records build/records --rerun build/rerun/records
+``<records folder>/<notebook>.json`` (:func:`mechlib.paths.records_dir`). :func:`load` reads one
+back. What the build does with records — compare them with ``tests/references``, update those,
+check a cold re-run gives the same bytes — is the build wing's (:mod:`mechlib.pipeline`).
 """
 
 from __future__ import annotations
 
-import argparse
 import json
-import os
-import shutil
-import subprocess
-import sys
-import tempfile
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -33,23 +20,7 @@ import numpy as np
 
 from mechlib import report
 from mechlib.params import check_float
-
-REPO_ROOT = Path(__file__).resolve().parents[1]
-RECORDS_ENV = "MECHLIB_RECORDS"
-FE_CACHE_ENV = "MECHLIB_FE_CACHE"
-#: set to "1": :func:`recorded_value` reads ``records_dir()`` only, never the default build's
-#: records (the determinism re-run, which must not read the first run's)
-RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
-
-
-def records_dir() -> Path:
-    """Folder that records are written to: ``$MECHLIB_RECORDS`` or ``<repo>/build/records``."""
-    return Path(os.environ.get(RECORDS_ENV, REPO_ROOT / "build" / "records"))
-
-
-def fe_cache_dir() -> Path:
-    """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
-    return Path(os.environ.get(FE_CACHE_ENV, REPO_ROOT / "build" / "cache" / "experiments"))
+from mechlib.paths import records_dir
 
 
 def _plain(value: Any) -> Any:
@@ -230,214 +201,3 @@ class Recorder:
 def load(path: Path) -> dict[str, Any]:
     """Read one record or reference file."""
     return json.loads(Path(path).read_text())
-
-
-def recorded_value(notebook: str, key: str) -> Any:
-    """A value recorded by another notebook: from ``records_dir()`` (this build or run) if it
-    holds that notebook's record, else from the default build's ``build/records`` — and then it
-    says so on stderr (a ``make run`` reads the default build's upstream record; a record of
-    another profile is never taken without a word). With ``$MECHLIB_RECORDS_STRICT=1``, only
-    ``records_dir()`` is read.
-
-    Raises
-    ------
-    FileNotFoundError
-        When that notebook has not been executed, naming the command that does it.
-    """
-    places = [records_dir() / f"{notebook}.json"]
-    if os.environ.get(RECORDS_STRICT_ENV) != "1":
-        places.append(REPO_ROOT / "build" / "records" / f"{notebook}.json")
-    path = next((p for p in places if p.exists()), None)
-    if path is None:
-        raise FileNotFoundError(
-            f"no record of notebook {notebook!r} in {' or '.join(str(p.parent) for p in places)}: "
-            f"execute it first (make notebooks)"
-        )
-    if path != places[0]:
-        print(
-            f"note: {notebook}'s {key!r} taken from {path} (no record of {notebook} in "
-            f"{places[0].parent})",
-            file=sys.stderr,
-        )
-    values = load(path)["values"]
-    if key not in values:
-        raise KeyError(f"notebook {notebook!r} recorded no value {key!r}; it has {sorted(values)}")
-    return values[key]["value"]
-
-
-def _compare_value(key: str, got: Any, ref: Any, rtol: float, atol: float) -> list[str]:
-    if isinstance(ref, (str, bool)) or ref is None:
-        return [] if got == ref else [f"{key}: got {got!r}, reference {ref!r}"]
-    try:
-        a = np.asarray(got, dtype=float)
-        b = np.asarray(ref, dtype=float)
-    except (TypeError, ValueError):
-        return [] if got == ref else [f"{key}: got {got!r}, reference {ref!r}"]
-    if a.shape != b.shape:
-        return [f"{key}: shape {a.shape} differs from reference shape {b.shape}"]
-    bad = np.abs(a - b) > atol + rtol * np.abs(b)
-    if not np.any(bad):
-        return []
-    idx = tuple(int(i) for i in np.argwhere(bad)[0]) if a.ndim else ()
-    where = f"[{', '.join(map(str, idx))}]" if idx else ""
-    return [
-        f"{key}{where}: got {a[idx].item()!r}, reference {b[idx].item()!r} "
-        f"(tolerance atol={atol}, rtol={rtol}; {int(bad.sum())} value(s) outside)"
-    ]
-
-
-def compare(results: dict[str, Any], reference: dict[str, Any]) -> list[str]:
-    """Compare a run's record with its reference.
-
-    Tolerances are taken from the reference (they are reviewed when committed).
-
-    Parameters
-    ----------
-    results, reference : dict
-        Contents of a record file and of its reference file.
-
-    Returns
-    -------
-    list of str
-        One message per mismatch; empty when the run reproduces the reference.
-    """
-    problems = []
-    got, ref = results["values"], reference["values"]
-    for key in sorted(set(ref) - set(got)):
-        problems.append(f"{key}: in the reference but not recorded by this run")
-    for key in sorted(set(got) - set(ref)):
-        problems.append(f"{key}: recorded but not in the reference (run `make references`)")
-    for key in sorted(set(got) & set(ref)):
-        r = ref[key]
-        problems += _compare_value(key, got[key]["value"], r["value"], r["rtol"], r["atol"])
-    return problems
-
-
-def update_references(records: Path, references: Path) -> list[str]:
-    """Copy every record into the references folder and describe what changed."""
-    references.mkdir(parents=True, exist_ok=True)
-    lines = []
-    for src in sorted(Path(records).glob("*.json")):
-        dst = references / src.name
-        if dst.exists():
-            diffs = compare(load(src), load(dst))
-            lines += [f"{src.stem}: {d}" for d in diffs] or [f"{src.stem}: unchanged"]
-        else:
-            lines.append(f"{src.stem}: new reference")
-        shutil.copyfile(src, dst)
-    return lines
-
-
-def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
-    """Execute every notebook again, cold, into ``out`` (emptied first).
-
-    The executed notebooks go to ``out/<name>.ipynb``, their records to ``out/records``
-    (``$MECHLIB_RECORDS``, read strictly: a notebook reading another's record reads the
-    re-run's), and their FE results to an empty cache of their own, ``out/fe-cache``
-    (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares nothing with a
-    first run, so the two can run at the same time (``make test`` does). Notebooks run in name
-    order, which puts ``hexflex_model`` before ``virtual_experiments``, the one that reads it.
-
-    Raises
-    ------
-    RuntimeError
-        If a notebook fails, naming it and its executed copy (which holds the traceback), with
-        the end of papermill's error output.
-    """
-    from mechlib.runs import papermill_command  # here: mechlib.runs imports this module
-
-    out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
-    shutil.rmtree(out, ignore_errors=True)
-    (out / "records").mkdir(parents=True)
-    env = dict(
-        os.environ,
-        **{
-            RECORDS_ENV: str(out / "records"),
-            FE_CACHE_ENV: str(out / "fe-cache"),
-            RECORDS_STRICT_ENV: "1",
-        },
-    )
-    for nb in sorted(Path(notebooks).glob("*.ipynb")):
-        print(f"re-run: executing {nb.name}", flush=True)
-        cmd = papermill_command(nb, out / nb.name, python=python)
-        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
-        if done.returncode != 0:
-            tail = "\n".join(done.stderr.splitlines()[-20:])
-            raise RuntimeError(
-                f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
-                f"{out / nb.name}):\n{tail}"
-            )
-
-
-def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
-    """Each notebook whose re-run record is not byte-identical to its first one, with the
-    values that differ (empty: the two runs agree)."""
-    problems = []
-    for nb in sorted(Path(notebooks).glob("*.ipynb")):
-        first, second = Path(records) / f"{nb.stem}.json", Path(rerun_records) / f"{nb.stem}.json"
-        missing = [
-            f"{which} record at {path}"
-            for which, path in (("first-run", first), ("re-run", second))
-            if not path.exists()
-        ]
-        if missing:
-            problems.append(f"{nb.stem}: no " + " and no ".join(missing))
-        elif second.read_bytes() != first.read_bytes():
-            diffs = compare(load(second), load(first))
-            problems.append(f"{nb.stem}: second run differs: {diffs or 'formatting only'}")
-    return problems
-
-
-def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable) -> list[str]:
-    """Execute every notebook again (:func:`rerun`, in a temporary folder) and check its record
-    is byte-identical to the one in ``records`` (:func:`rerun_differences`).
-
-    The second run starts from an empty FE cache (``$MECHLIB_FE_CACHE`` in a temporary folder),
-    so it checks that two cold computations agree, not merely that cached results are returned.
-    """
-    with tempfile.TemporaryDirectory() as tmp:
-        rerun(notebooks, Path(tmp), python=python)
-        return rerun_differences(records, Path(tmp) / "records", notebooks)
-
-
-def main(argv: list[str] | None = None) -> int:
-    """Command-line entry point (``update``, ``rerun`` or ``determinism``)."""
-    parser = argparse.ArgumentParser(prog="python -m mechlib.records")
-    sub = parser.add_subparsers(dest="cmd", required=True)
-    up = sub.add_parser("update", help="re-record references from build/records")
-    up.add_argument("--records", type=Path, required=True)
-    up.add_argument("--references", type=Path, required=True)
-    det = sub.add_parser("determinism", help="re-run notebooks and require identical records")
-    det.add_argument("--records", type=Path, required=True)
-    det.add_argument("--notebooks", type=Path, default=REPO_ROOT / "notebooks")
-    det.add_argument(
-        "--rerun", type=Path, help="records of a re-run already made (`rerun`): compare only"
-    )
-    again = sub.add_parser("rerun", help="execute every notebook again, cold, into a folder")
-    again.add_argument("--out", type=Path, required=True)
-    again.add_argument("--notebooks", type=Path, default=REPO_ROOT / "notebooks")
-    args = parser.parse_args(argv)
-    if args.cmd == "update":
-        for line in update_references(args.records, args.references):
-            print(line)
-        return 0
-    if args.cmd == "rerun":
-        try:
-            rerun(args.notebooks, args.out)
-        except RuntimeError as err:
-            print(err, file=sys.stderr)
-            return 1
-        print(f"re-run: every notebook executed again into {args.out}")
-        return 0
-    if args.rerun is None:
-        problems = rerun_identical(args.records, args.notebooks)
-    else:
-        problems = rerun_differences(args.records, args.rerun, args.notebooks)
-    for p in problems:
-        print("NOT DETERMINISTIC:", p)
-    print("determinism: " + ("FAILED" if problems else "records identical on a second run"))
-    return 1 if problems else 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())

@@ -5,8 +5,8 @@ A row is built by :func:`compare_row` (numbers against the published ones), :fun
 publish). Notebooks describe a row without "ours" — :class:`Comparison`, :class:`Claim`,
 :class:`Computed` — and hand it to :meth:`mechlib.records.Recorder.value`, which fills in the
 value it records: the number in the report is then the number checked against the references.
-:mod:`mechlib.bookbuild` gathers the rows of every record into the book's report page. A verdict
-is never typed: it follows from the numbers and tolerances given.
+The build wing (:mod:`mechlib.pipeline.bookbuild`) gathers the rows of every record into the book's
+report page. A verdict is never typed: it follows from the numbers and tolerances given.
 """
 
 from __future__ import annotations

@@ -8,9 +8,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from mechlib import bookbuild, report
-from mechlib.book import artefacts, cells, reportpage
-from mechlib.records import REPO_ROOT
+from mechlib import report
+from mechlib.paths import REPO_ROOT
+from mechlib.pipeline import bookbuild
+from mechlib.pipeline.book import artefacts, cells, reportpage
 
 FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
 
@@ -62,6 +63,7 @@ def test_find_section_prefers_most_artefacts_then_words_then_none() -> None:
         'for key, val in {"a": x, "b": y}.items():\n    glue(key, float(val), display=False)',
         'rec.value("d", dims, atol=0, row=report.Computed("Fig 2", "dims"))\nrec.value("n", n)',
         'rec.text("label", "θx", of="d")\nrec.value("r", r, rtol=1e-6, glue={"r0": 0})',
+        "# round-off of printed sums\nROUNDOFF = 1e-9\nrec.value('e', e, rtol=ROUNDOFF)",
     ],
 )
 def test_bookkeeping_cells_are_recognised(source: str) -> None:
@@ -74,6 +76,7 @@ def test_bookkeeping_cells_are_recognised(source: str) -> None:
         'me6 = screening.margins(s0)\nglue("me6", me6, display=False)',  # computes
         'glue("fig", fig)',  # displays
         'print(f"effects {effects}")',  # prints a result
+        "tol = 1e-9\nrec.value('e', e, rtol=tol)",  # a lower-case name is not a named tolerance
         "rec.value(",  # does not parse
         "",
     ],

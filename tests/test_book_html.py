@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from mechlib import bookbuild
-from mechlib.book import htmlcheck, reportpage
-from mechlib.records import REPO_ROOT, records_dir
+from mechlib.paths import REPO_ROOT, records_dir
+from mechlib.pipeline import bookbuild
+from mechlib.pipeline.book import htmlcheck, reportpage
 
 HTML = REPO_ROOT / "book" / "_build" / "html"
 

@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt
 import pytest
 from matplotlib.patches import FancyArrowPatch, FancyBboxPatch
 
-from mechlib.book import browser, diagrams, htmlcheck, methods
+from mechlib.pipeline.book import browser, diagrams, htmlcheck, methods
 
 
 # --- diagrams and method pages -------------------------------------------------------------------

@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from mechlib.records import REPO_ROOT
+from mechlib.paths import REPO_ROOT
 
 NOTEBOOKS = sorted((REPO_ROOT / "notebooks").glob("*.ipynb"))
 DEFINITIONS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-from mechlib.records import REPO_ROOT
-from mechlib.runs import papermill_command
+from mechlib.paths import REPO_ROOT
+from mechlib.pipeline.execute import papermill_command
 
 
 def _run_with(name: str, args: list[str], tmp_path: Path) -> tuple[int, str]:

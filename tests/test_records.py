@@ -7,8 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from mechlib.book import quoted
-from mechlib.records import REPO_ROOT, compare, load, records_dir
+from mechlib.paths import REPO_ROOT, records_dir
+from mechlib.pipeline.book import quoted
+from mechlib.pipeline.references import compare
+from mechlib.records import load
 
 REFERENCES = REPO_ROOT / "tests" / "references"
 NOTEBOOKS = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))

@@ -1,4 +1,4 @@
-"""The record/compare helpers themselves."""
+"""The Recorder, and the build wing's record helpers: compare, update, the cold re-run."""
 
 from __future__ import annotations
 
@@ -8,9 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechlib import records, report
-from mechlib.book import quoted
-from mechlib.records import Recorder, compare, load, recorded_value, update_references
+from mechlib import paths, report
+from mechlib.pipeline.book import quoted
+from mechlib.pipeline.cli import main as pipeline_main
+from mechlib.pipeline.references import compare, update_references
+from mechlib.pipeline.rerun import rerun, rerun_differences, rerun_identical
+from mechlib.records import Recorder, load
 
 
 def test_recorder_roundtrip_and_deterministic_bytes(tmp_path: Path) -> None:
@@ -64,48 +67,18 @@ def test_update_references_reports_changes(tmp_path: Path) -> None:
     assert lines[0].startswith("nb: v: got 2.0") and json.loads((refs / "nb.json").read_text())
 
 
-def test_a_value_recorded_by_another_notebook_is_found_or_named(
-    tmp_path: Path, monkeypatch
-) -> None:
-    rec = Recorder("upstream")
-    rec.value("geometry", [1.0, 2.0], atol=0)
-    rec.save(tmp_path)
-    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path))
-    assert recorded_value("upstream", "geometry") == [1.0, 2.0]
-    with pytest.raises(KeyError, match="recorded no value 'size'"):
-        recorded_value("upstream", "size")
-    with pytest.raises(FileNotFoundError, match=r"no record of notebook 'nowhere'.*make notebooks"):
-        recorded_value("nowhere", "geometry")
-
-
-def test_a_value_from_the_default_build_is_announced(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture
-) -> None:
-    default = tmp_path / "repo"
-    rec = Recorder("upstream")
-    rec.value("geometry", [3.0], atol=0)
-    rec.save(default / "build" / "records")
-    monkeypatch.setattr(records, "REPO_ROOT", default)
-    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path / "run"))  # holds no record
-    assert recorded_value("upstream", "geometry") == [3.0]
-    err = capsys.readouterr().err
-    assert "upstream's 'geometry' taken from" in err and str(tmp_path / "run") in err
-    monkeypatch.setenv(records.RECORDS_ENV, str(default / "build" / "records"))
-    assert recorded_value("upstream", "geometry") == [3.0]
-    assert capsys.readouterr().err == ""  # this build's own record: nothing to say
-
-
 def test_fe_cache_dir_follows_its_environment_variable(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.delenv(records.FE_CACHE_ENV, raising=False)
-    assert records.fe_cache_dir() == records.REPO_ROOT / "build" / "cache" / "experiments"
-    monkeypatch.setenv(records.FE_CACHE_ENV, str(tmp_path))
-    assert records.fe_cache_dir() == tmp_path
+    monkeypatch.delenv(paths.FE_CACHE_ENV, raising=False)
+    assert paths.fe_cache_dir() == paths.REPO_ROOT / "build" / "cache" / "experiments"
+    monkeypatch.setenv(paths.FE_CACHE_ENV, str(tmp_path))
+    assert paths.fe_cache_dir() == tmp_path
 
 
 _PROBE = """\
-from mechlib.records import Recorder, fe_cache_dir, records_dir
+from mechlib.paths import fe_cache_dir, records_dir
+from mechlib.records import Recorder
 d = fe_cache_dir()
 rec = Recorder("probe")
 rec.value("cold_cache", not d.exists() or not any(d.iterdir()))
@@ -125,13 +98,13 @@ def test_determinism_rerun_is_cold_and_flags_a_changed_record(tmp_path: Path) ->
     expected.value("private_cache", True)
     expected.save(first)
     # the re-run sees an empty FE cache of its own, so its record equals the expected one ...
-    assert records.rerun_identical(first, notebooks) == []
+    assert rerun_identical(first, notebooks) == []
     # ... and a first run that recorded something else is reported, naming the value
     wrong = Recorder("probe")
     wrong.value("cold_cache", False)
     wrong.value("private_cache", True)
     wrong.save(first)
-    problems = records.rerun_identical(first, notebooks)
+    problems = rerun_identical(first, notebooks)
     assert len(problems) == 1 and "probe: second run differs" in problems[0]
     assert "cold_cache" in problems[0]
 
@@ -144,23 +117,9 @@ def test_a_rerun_into_a_relative_folder_writes_there(
     nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(_PROBE)])
     nbformat.write(nb, tmp_path / "nbs" / "probe.ipynb")
     monkeypatch.chdir(tmp_path)  # the kernel runs in nbs/: a relative path must not follow it
-    assert records.main(["rerun", "--out", "out", "--notebooks", "nbs"]) == 0
+    assert pipeline_main(["rerun", "--out", "out", "--notebooks", "nbs"]) == 0
     values = load(tmp_path / "out" / "records" / "probe.json")["values"]
     assert values["cold_cache"]["value"] is True and values["private_cache"]["value"] is True
-
-
-def test_a_strict_records_folder_never_reads_the_default_build(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    default = Recorder("upstream")
-    default.value("x", 1.5, rtol=0)
-    default.save(tmp_path / "repo" / "build" / "records")
-    monkeypatch.setattr(records, "REPO_ROOT", tmp_path / "repo")
-    monkeypatch.setenv(records.RECORDS_ENV, str(tmp_path / "own"))
-    assert records.recorded_value("upstream", "x") == 1.5  # the fallback, with a note
-    monkeypatch.setenv(records.RECORDS_STRICT_ENV, "1")
-    with pytest.raises(FileNotFoundError, match="upstream"):
-        records.recorded_value("upstream", "x")
 
 
 def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: Path) -> None:
@@ -170,11 +129,11 @@ def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: P
     cell = nbformat.v4.new_code_cell('raise ValueError("probe_broke")')
     nbformat.write(nbformat.v4.new_notebook(cells=[cell]), notebooks / "broken.ipynb")
     with pytest.raises(RuntimeError, match=r"(?s)re-run of broken.ipynb failed.*probe_broke"):
-        records.rerun(notebooks, tmp_path / "out")
+        rerun(notebooks, tmp_path / "out")
     # a first-run record with no re-run record is a difference, not a pass
     first = tmp_path / "records"
     Recorder("broken").save(first)
-    problems = records.rerun_differences(first, tmp_path / "out" / "records", notebooks)
+    problems = rerun_differences(first, tmp_path / "out" / "records", notebooks)
     assert len(problems) == 1 and "broken: no re-run record" in problems[0]
 
 

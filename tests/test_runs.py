@@ -1,4 +1,5 @@
-"""``make run``'s helpers: the papermill command, parameter-name checks, the failure line."""
+"""The build wing's notebook execution: the papermill command, chapter inputs, parameter-name
+checks, ``make run``'s failure line."""
 
 from __future__ import annotations
 
@@ -7,9 +8,10 @@ import json
 from pathlib import Path
 
 import pytest
+import yaml
 
-from mechlib import runs
-from mechlib.records import REPO_ROOT
+from mechlib.paths import REPO_ROOT
+from mechlib.pipeline import chapters, execute, parameters, runs
 
 ALLOWED = ["seed", "sigma", "n_per_leg", "sweep_amplitudes"]
 
@@ -24,7 +26,7 @@ def _parameters_cell(source: list[str]) -> dict:
 
 
 def test_papermill_command_is_the_one_command_line() -> None:
-    cmd = runs.papermill_command(
+    cmd = execute.papermill_command(
         Path("notebooks/a.ipynb"), Path("/out/a.ipynb"), ["-p", "seed", "1"], python="/env/bin/py"
     )
     assert cmd == [
@@ -56,7 +58,7 @@ def test_every_papermill_parameter_form_is_read(tmp_path: Path) -> None:
         *("--parameters_base64", base64.b64encode(b"colour: red").decode()),
         *("--parameters", "n_per_leg", "4"),
     ]
-    assert runs.given_parameters(args) == [
+    assert parameters.given_parameters(args) == [
         "sigma",
         "seed",
         "sweep_amplitudes",
@@ -68,27 +70,29 @@ def test_every_papermill_parameter_form_is_read(tmp_path: Path) -> None:
         "colour",
         "n_per_leg",
     ]
-    assert runs.given_parameters(["-y", ""]) == []
+    assert parameters.given_parameters(["-y", ""]) == []
 
 
 def test_malformed_parameter_arguments_are_refused(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match=r"-p needs a name and a value, got \['-p', 'sigma'\]"):
-        runs.given_parameters(["-p", "sigma"])
+        parameters.given_parameters(["-p", "sigma"])
     with pytest.raises(ValueError, match="-y must give a YAML mapping of parameter names"):
-        runs.given_parameters(["-y", "[1, 2]"])
+        parameters.given_parameters(["-y", "[1, 2]"])
     with pytest.raises(ValueError, match=r"-y must give a YAML mapping, got 'a: \[1' \(expected"):
-        runs.given_parameters(["-y", "a: [1"])
+        parameters.given_parameters(["-y", "a: [1"])
     with pytest.raises(ValueError, match="cannot read the file"):
-        runs.given_parameters(["-f", str(tmp_path / "missing.yaml")])
+        parameters.given_parameters(["-f", str(tmp_path / "missing.yaml")])
     with pytest.raises(ValueError, match="-b must be base64-encoded YAML"):
-        runs.given_parameters(["-b", "not base64!"])
+        parameters.given_parameters(["-b", "not base64!"])
 
 
 def test_unknown_parameter_names_are_refused_by_name() -> None:
-    given = runs.check_parameter_names(["-p", "sigma", "1e-3", "-y", "seed: 2"], ALLOWED)
+    given = parameters.check_parameter_names(["-p", "sigma", "1e-3", "-y", "seed: 2"], ALLOWED)
     assert given == ["sigma", "seed"]
     with pytest.raises(ValueError) as info:
-        runs.check_parameter_names(["-p", "sigm", "1e-3", "-y", "colour: 1"], ALLOWED, "nb.ipynb")
+        parameters.check_parameter_names(
+            ["-p", "sigm", "1e-3", "-y", "colour: 1"], ALLOWED, "nb.ipynb"
+        )
     assert str(info.value) == (
         "unknown parameter 'sigm' (did you mean 'sigma'?), 'colour' for nb.ipynb: its parameters "
         "cell defines seed, sigma, n_per_leg, sweep_amplitudes"
@@ -114,17 +118,17 @@ def test_notebook_parameters_are_the_parameters_cell_assignments(tmp_path: Path)
             {"cell_type": "code", "metadata": {}, "source": "later = 3"},
         ],
     )
-    assert runs.notebook_parameters(nb) == ["seed", "sigma", "a", "b", "shape"]
-    assert runs.notebook_parameters(_notebook(tmp_path / "none.ipynb", [])) == []
+    assert parameters.notebook_parameters(nb) == ["seed", "sigma", "a", "b", "shape"]
+    assert parameters.notebook_parameters(_notebook(tmp_path / "none.ipynb", [])) == []
     bad = _notebook(tmp_path / "bad.ipynb", [_parameters_cell(["x = (\n"])])
     with pytest.raises(ValueError, match=r"the parameters cell of .*bad\.ipynb is not Python"):
-        runs.notebook_parameters(bad)
+        parameters.notebook_parameters(bad)
 
 
 def test_a_parameter_papermill_cannot_see_is_still_a_parameter() -> None:
     # the line of tab_half_width holds a second "=" in its comment: papermill's inspection
     # skips it (and would warn "Passed unknown parameter"), the parameters cell defines it
-    names = runs.notebook_parameters(REPO_ROOT / "notebooks" / "hexflex_model.ipynb")
+    names = parameters.notebook_parameters(REPO_ROOT / "notebooks" / "hexflex_model.ipynb")
     assert "tab_half_width" in names and "stage_radius" in names
 
 
@@ -177,3 +181,56 @@ def test_a_misspelled_parameter_stops_make_run_before_anything_runs(tmp_path: Pa
     assert "refused, nothing was run: unknown parameter 'sigm' (did you mean 'sigma'?)" in err
     assert "defines sigma" in err
     assert not (tmp_path / "runs").exists()
+
+
+def test_a_chapter_gets_its_inputs_from_the_upstream_record(tmp_path: Path, capsys) -> None:
+    references = REPO_ROOT / "tests" / "references"  # copies of records, as a records folder
+    model = json.loads((references / "hexflex_model.json").read_text())["values"]
+    inputs = execute.chapter_inputs("virtual_experiments", references, strict=True)
+    assert inputs["mesh_fraction"] == model["model.mesh_fraction"]["value"]
+    assert inputs["geometry"]["thickness"] == model["geometry.thickness"]["value"]
+    assert sorted(inputs["geometry"]) == sorted(
+        k.removeprefix("geometry.") for k in model if k.startswith("geometry.")
+    )
+    # a value the run gives itself is kept; a notebook without inputs gets none
+    assert list(execute.chapter_inputs("virtual_experiments", references, ["geometry"])) == [
+        "mesh_fraction"
+    ]
+    assert execute.input_arguments("published_doe", tmp_path) == []
+    # the -y text papermill reads back gives the recorded floats exactly
+    option, text = execute.input_arguments("virtual_experiments", references, strict=True)
+    assert option == "-y" and yaml.safe_load(text) == inputs
+    with pytest.raises(FileNotFoundError, match=r"'hexflex_model'.*make notebooks"):
+        execute.chapter_inputs("virtual_experiments", tmp_path, strict=True)
+    assert capsys.readouterr().err == ""
+
+
+def test_a_run_reads_the_default_build_inputs_with_a_note(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys
+) -> None:
+    default = tmp_path / "build"
+    (default / "records").mkdir(parents=True)
+    record = REPO_ROOT / "tests" / "references" / "hexflex_model.json"
+    (default / "records" / "hexflex_model.json").write_bytes(record.read_bytes())
+    monkeypatch.setattr(execute, "DEFAULT_BUILD", default)
+    assert "geometry" in execute.chapter_inputs("virtual_experiments", tmp_path / "run")
+    assert "hexflex_model's record taken from" in capsys.readouterr().err
+    with pytest.raises(FileNotFoundError):
+        execute.chapter_inputs("virtual_experiments", tmp_path / "run", strict=True)
+
+
+def test_every_notebook_is_a_chapter_and_its_inputs_are_its_parameters() -> None:
+    notebooks = REPO_ROOT / "notebooks"
+    assert sorted(chapters.CHAPTERS) == sorted(p.stem for p in notebooks.glob("*.ipynb"))
+    chapters.check_order()
+    for chapter, inputs in chapters.CHAPTER_INPUTS.items():
+        assert set(inputs) <= set(parameters.notebook_parameters(notebooks / f"{chapter}.ipynb"))
+    assert chapters.upstream("virtual_experiments") == ["hexflex_model"]
+    names = [Path(f"x/{c}.ipynb") for c in reversed(chapters.CHAPTERS)] + [Path("a.ipynb")]
+    assert [p.stem for p in chapters.in_order(names)] == [*chapters.CHAPTERS, "a"]
+
+
+def test_an_input_from_a_later_chapter_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(chapters.CHAPTER_INPUTS, "published_doe", {"g": ("hexflex_model", "k")})
+    with pytest.raises(ValueError, match="'published_doe' comes from 'hexflex_model'"):
+        chapters.check_order()

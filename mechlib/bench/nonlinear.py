@@ -12,7 +12,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from mechlib import published as pub
-from mechlib.bench import REPO_ROOT, bench_geometry
+from mechlib.paths import REPO_ROOT
 
 #: Non-linear validation runs timed in-process, and on the two-process pool.
 N_NONLINEAR_SERIAL = 2
@@ -172,17 +172,24 @@ def _warm_worker(spec) -> int:
 
 
 def _chapter_spec():
-    """The FE model of the DOE chapter: the geometry the hexflex notebook identified when a build
-    holds its record, else the bench geometry (the second item says which)."""
+    """The FE model of the DOE chapter: the geometry and mesh the hexflex notebook identified
+    when the build holds its record (the chapter inputs the build wing passes), else the bench
+    geometry at the default mesh (the second item says which)."""
     from mechlib.hexflex import experiments as ex
-    from mechlib.hexflex.identify import recorded_geometry
+    from mechlib.hexflex.geometry import HexFlexGeometry
     from mechlib.hexflex.model import DEFAULT_MESH_FRACTION
+    from mechlib.paths import records_dir
+    from mechlib.pipeline.execute import chapter_inputs
 
     try:
-        g, source = recorded_geometry(), "identified"
+        inputs = chapter_inputs("virtual_experiments", records_dir())
     except (FileNotFoundError, KeyError):
-        g, source = bench_geometry(), "bench"
-    return ex.ModelSpec(g, mesh_size=DEFAULT_MESH_FRACTION * g.narrowest), source
+        # the bench geometry (mechlib.bench.bench_geometry): the default dimensions
+        g, fraction, source = HexFlexGeometry(), DEFAULT_MESH_FRACTION, "bench"
+    else:
+        g = HexFlexGeometry.from_dict(inputs["geometry"])
+        fraction, source = float(inputs["mesh_fraction"]), "identified"
+    return ex.ModelSpec(g, mesh_size=fraction * g.narrowest), source
 
 
 def nonlinear_run_counts() -> dict[str, int]:

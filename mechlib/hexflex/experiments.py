@@ -32,16 +32,13 @@ from mechlib.hexflex.model import (
     check_forces,
 )
 from mechlib.hexflex.nonlinear import NonlinearSolver
+from mechlib.hexflex.sources import model_modules
 from mechlib.params import check_choice, check_int
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 _CACHE_VERSION = 1
-#: The modules a task runs (the linear model and the non-linear solver): their sources, and
-#: those of every mechlib module they import (found by :func:`model_modules`), enter the cache
-#: key (see :func:`model_code_fingerprint`).
-_TASK_MODULES: tuple[str, ...] = ("mechlib.hexflex.model", "mechlib.hexflex.nonlinear")
 
 
 @dataclass(frozen=True)
@@ -169,42 +166,6 @@ def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndar
         return model_for(spec).poses(forces)
     solver = solver_for(spec)
     return np.array([solver.pose(f, steps=steps)[0] for f in forces])
-
-
-def model_modules() -> tuple[str, ...]:
-    """The mechlib modules a task's results depend on: ``_TASK_MODULES`` and every mechlib
-    module they import, directly or not, at module level or inside a function (read from the
-    sources' import statements), sorted."""
-    import ast
-    import importlib.util
-
-    seen: set[str] = set()
-    todo = list(_TASK_MODULES)
-    while todo:
-        name = todo.pop()
-        if name in seen:
-            continue
-        seen.add(name)
-        origin = importlib.util.find_spec(name).origin
-        for node in ast.walk(ast.parse(Path(origin).read_text())):
-            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
-            elif isinstance(node, ast.Import):
-                targets = [a.name for a in node.names]
-            else:
-                continue
-            todo.extend(t for t in targets if t.startswith("mechlib") and _is_module(t))
-    return tuple(sorted(seen))
-
-
-def _is_module(name: str) -> bool:
-    """True if ``name`` is an importable module (not a name defined inside one)."""
-    import importlib.util
-
-    try:
-        return importlib.util.find_spec(name) is not None
-    except ModuleNotFoundError:  # "package.module.NAME": module is no package
-        return False
 
 
 @lru_cache(maxsize=1)

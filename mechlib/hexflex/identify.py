@@ -227,15 +227,6 @@ def _valid(start: HexFlexGeometry, free: list[str], logdims: np.ndarray) -> HexF
         return None
 
 
-def recorded_geometry(notebook: str = "hexflex_model") -> HexFlexGeometry:
-    """The geometry a notebook recorded as ``geometry.<dimension>`` values (see ``records``)."""
-    from mechlib.records import recorded_value
-
-    return HexFlexGeometry.from_dict(
-        {n: recorded_value(notebook, f"geometry.{n}") for n in DIMENSION_BOUNDS}
-    )
-
-
 def at_bounds(geometry: HexFlexGeometry, free: Sequence[str], rtol: float = 0.01) -> list[str]:
     """The ``free`` dimensions of ``geometry`` within ``rtol`` of one of their bounds."""
     return [

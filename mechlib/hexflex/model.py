@@ -33,6 +33,30 @@ MAX_FORCE_N = 50.0
 DEFAULT_MESH_FRACTION = 0.5
 #: Default largest element in the stage and tabs, in narrowest flexure widths.
 COARSE_WIDTHS = 3.0
+#: Element sizes at the flexures that a model recipe takes, as fractions of the narrowest flexure
+#: width (what the hexflex notebook's mesh-convergence study covers).
+MESH_FRACTION_RANGE = (0.1, 1.0)
+
+
+def check_settings(
+    young: object, poisson: object, element: object, mesh_fraction: object | None = None
+) -> tuple[float, float, str, float | None]:
+    """The material and discretisation settings of a model, validated (what every model and
+    model recipe checks): Young's modulus [MPa] > 0, Poisson's ratio in (−1, ``MAX_POISSON``],
+    an element of ``ELEMENTS`` and, if given, a mesh fraction in ``MESH_FRACTION_RANGE``.
+
+    Raises
+    ------
+    ValueError, TypeError
+        Naming the setting, what was given and what is allowed.
+    """
+    young = check_float("young [MPa]", young, low=0.0, low_open=True)
+    poisson = check_float("poisson", poisson, low=-1.0, high=MAX_POISSON, low_open=True)
+    element = check_choice("element", element, ELEMENTS)
+    if mesh_fraction is not None:
+        low, high = MESH_FRACTION_RANGE
+        mesh_fraction = check_float("mesh_fraction", mesh_fraction, low=low, high=high)
+    return young, poisson, element, mesh_fraction
 
 
 @dataclass
@@ -71,11 +95,9 @@ class HexFlexModel:
 
     def __post_init__(self) -> None:
         g = self.geometry
-        self.young = check_float("young [MPa]", self.young, low=0.0, low_open=True)
-        self.poisson = check_float(
-            "poisson", self.poisson, low=-1.0, high=MAX_POISSON, low_open=True
+        self.young, self.poisson, self.element, _ = check_settings(
+            self.young, self.poisson, self.element
         )
-        self.element = check_choice("element", self.element, ELEMENTS)
         self.body_factor = check_float("body_factor", self.body_factor, low=1.0, high=1e6)
         size = DEFAULT_MESH_FRACTION * g.narrowest if self.mesh_size is None else self.mesh_size
         self.mesh_size = check_float(
@@ -238,7 +260,9 @@ def model_maker(
     *, young: float, poisson: float, element: str, mesh_fraction: float
 ) -> Callable[..., HexFlexModel]:
     """``make(g, **kwargs) -> HexFlexModel`` with these settings and flexure elements
-    ``mesh_fraction`` of ``g``'s narrowest width (one model recipe for a whole study)."""
+    ``mesh_fraction`` of ``g``'s narrowest width (one model recipe for a whole study); the
+    settings are checked here (:func:`check_settings`), before any model is built."""
+    young, poisson, element, mesh_fraction = check_settings(young, poisson, element, mesh_fraction)
     return partial(
         _make_model, young=young, poisson=poisson, element=element, mesh_fraction=mesh_fraction
     )

@@ -17,6 +17,7 @@ Units: mm, N, MPa (N/mm²).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from dataclasses import field as dataclass_field  # `field` is an FEProblem attribute
 from typing import Any
 
 import numpy as np
@@ -58,7 +59,11 @@ def integral(order: int = QUAD_ORDER):
 
 @dataclass
 class FEProblem:
-    """The assembled pieces of one SfePy problem (see :func:`build`)."""
+    """The assembled pieces of one SfePy problem (see :func:`build`), given by name.
+
+    ``loads`` is not given: it is computed on construction, the reduced load vectors of unit
+    actuator forces at the tabs' edges of ``geometry`` (:func:`unit_loads`).
+    """
 
     pb: Any
     field: Any
@@ -71,9 +76,13 @@ class FEProblem:
     eq: np.ndarray
     n_comp: int
     cell_parts: np.ndarray
-    loads: np.ndarray
     fit: np.ndarray
     stage_idx: np.ndarray
+    geometry: geo.HexFlexGeometry
+    loads: np.ndarray = dataclass_field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        self.loads = unit_loads(self, self.geometry)
 
     @property
     def n_dofs(self) -> int:
@@ -171,12 +180,22 @@ def build(
     stage_idx = eq.reshape(-1, n_comp)[: len(vert)][stage, :3].ravel()
     if np.any(stage_idx < 0):
         raise RuntimeError("stage nodes are clamped: geometry error")
-    prob = FEProblem(
-        pb, fld, u, v, mat, omega, edges, vert, eq, n_comp, parts,
-        np.empty((0, 6)), fit_operator(vert[stage]), stage_idx,
-    )  # fmt: skip
-    prob.loads = unit_loads(prob, g)
-    return prob
+    return FEProblem(
+        pb=pb,
+        field=fld,
+        u=u,
+        v=v,
+        material=mat,
+        omega=omega,
+        edges=edges,
+        coors=vert,
+        eq=eq,
+        n_comp=n_comp,
+        cell_parts=parts,
+        fit=fit_operator(vert[stage]),
+        stage_idx=stage_idx,
+        geometry=g,
+    )
 
 
 def _material(name: str, elastic: np.ndarray, element: str):

@@ -3,8 +3,8 @@ protocol), each step linked to the section of the book that carries it out.
 
 The steps paraphrase the thesis (sec. 2.5 for Fig 1, sec. 3.6 for Fig 9). Where each step is
 implemented is given as ``(page, artefact or heading text)``, resolved against the chapter pages'
-headings when the book is built (:func:`mechlib.book.artefacts.find_section`), and as the mechlib
-functions that do the work (tested to exist).
+headings when the book is built (:func:`~mechlib.pipeline.book.artefacts.find_section`), and as
+the mechlib functions that do the work (tested to exist).
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 
-from mechlib.book.diagrams import Loop, Step, flow_diagram
+from mechlib.pipeline.book.diagrams import Loop, Step, flow_diagram
 
 
 @dataclass(frozen=True)

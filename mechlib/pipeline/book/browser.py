@@ -1,6 +1,7 @@
 """Open every page of the built book from ``file://`` in headless Chromium with the network off.
 
-``python -m mechlib.book.browser --html book/_build/html --book book [--screenshot PAGE=PNG]``
+``python -m mechlib.pipeline check-browser --html book/_build/html --book book``
+(``--screenshot PAGE=PNG`` also saves a screenshot)
 
 For each page Chromium runs the page's scripts (``--virtual-time-budget``) and dumps the DOM. The
 page's own ``_static/bookcheck.js`` writes on ``<html>`` whether MathJax finished and which
@@ -31,7 +32,7 @@ from concurrent.futures import ThreadPoolExecutor
 from html.parser import HTMLParser
 from pathlib import Path
 
-from mechlib.book import quoted
+from mechlib.pipeline.book import quoted
 
 BROWSERS = ("chromium", "chromium-browser", "google-chrome")
 FLAGS = (
@@ -227,7 +228,7 @@ def check(html_root: Path, book: Path, browser: str, workers: int = 2) -> dict[s
 
 def main(argv: list[str] | None = None) -> int:
     """Command line: check every page; optionally save screenshots (``PAGE=PNG``)."""
-    parser = argparse.ArgumentParser(prog="python -m mechlib.book.browser")
+    parser = argparse.ArgumentParser(prog="python -m mechlib.pipeline check-browser")
     parser.add_argument("--html", type=Path, required=True)
     parser.add_argument("--book", type=Path, required=True)
     parser.add_argument("--screenshot", action="append", default=[], metavar="PAGE=PNG")

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from mechlib import report
-from mechlib.book import artefacts
+from mechlib.pipeline.book import artefacts
 
 #: Verdict groups in the order the summary lists them: (key, label, prefix of the row verdict).
 VERDICTS = (

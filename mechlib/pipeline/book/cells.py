@@ -5,8 +5,9 @@ rule, what each cell shows:
 
 * the ``parameters`` cell (and papermill's injected one) stays as it is: readers change it;
 * a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.text(...)``,
-  ``rec.save()``, ``glue(..., display=False)`` and prints of what those return — is removed
-  (``remove-cell``); its glued values still reach the text;
+  ``rec.save()``, ``glue(..., display=False)``, prints of what those return, and the named
+  tolerances of the records (assignments to UPPER_CASE names) — is removed (``remove-cell``);
+  its glued values still reach the text;
 * every other code cell is folded (``hide-input``): figures and tables stay visible;
 * outputs lose lines of known library warnings and have absolute machine paths neutralised;
 * every heading gets a MyST label, so the report and the method pages can link to sections.
@@ -21,7 +22,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from mechlib.book.artefacts import Section, parse
+from mechlib.pipeline.book.artefacts import Section, parse
 
 #: Tags that show a reader-facing cell as written (papermill's parameter cells).
 KEEP_VISIBLE = frozenset({"parameters", "injected-parameters"})
@@ -73,6 +74,11 @@ def _bookkeeping_call(node: ast.AST, recorders: set[str]) -> bool:
     )
 
 
+def _named_constant(stmt: ast.Assign) -> bool:
+    """``TOL = ...``: every target an UPPER_CASE name (a record's named tolerance)."""
+    return all(isinstance(t, ast.Name) and t.id.isupper() for t in stmt.targets)
+
+
 def _is_false(node: ast.AST) -> bool:
     return isinstance(node, ast.Constant) and node.value is False
 
@@ -89,6 +95,8 @@ def _bookkeeping_block(body: list[ast.stmt], recorders: set[str], derived: set[s
             continue
         if isinstance(stmt, ast.Assign) and _bookkeeping_call(stmt.value, recorders):
             derived |= {n.id for t in stmt.targets for n in ast.walk(t) if isinstance(n, ast.Name)}
+            continue
+        if isinstance(stmt, ast.Assign) and _named_constant(stmt):
             continue
         if (
             isinstance(stmt, ast.Expr)

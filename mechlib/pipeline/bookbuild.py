@@ -1,14 +1,14 @@
 """Assemble the book's generated pages from the executed notebooks and their records.
 
-``python -m mechlib.bookbuild --executed build/executed --records build/records --book book``
+``python -m mechlib.pipeline book --executed build/executed --records build/records --book book``
 
 * copies every executed notebook into ``book/chapters/`` with the presentation rules of
-  :mod:`mechlib.book.cells` applied (computation folded, bookkeeping removed, machine paths and
-  library warnings neutralised, headings labelled);
-* writes ``book/report.md``, the reproduction report (:mod:`mechlib.book.reportpage`), and
+  :mod:`mechlib.pipeline.book.cells` applied (computation folded, bookkeeping removed, machine
+  paths and library warnings neutralised, headings labelled);
+* writes ``book/report.md``, the reproduction report (:mod:`mechlib.pipeline.book.reportpage`), and
   ``book/generated/summary.md``, its verdict counts in one paragraph (included by ``intro.md``);
 * draws the thesis's Figs 1 and 9 on their pages in ``book/generated/``
-  (:mod:`mechlib.book.methods`);
+  (:mod:`mechlib.pipeline.book.methods`);
 * checks that every ``file:`` entry of ``book/_toc.yml`` names an existing page, naming the
   entry that does not.
 
@@ -26,9 +26,10 @@ from typing import Any
 
 import yaml
 
-from mechlib.book import artefacts, methods, reportpage
-from mechlib.book.cells import prepare_notebook
-from mechlib.records import REPO_ROOT, load, records_dir
+from mechlib.paths import REPO_ROOT, records_dir
+from mechlib.pipeline.book import artefacts, methods, reportpage
+from mechlib.pipeline.book.cells import prepare_notebook
+from mechlib.records import load
 
 REPORT_HEADER = """---
 html_theme.sidebar_secondary.remove: true
@@ -194,7 +195,7 @@ def build(executed: Path, records: Path, book: Path) -> list[str]:
 
 def main(argv: list[str] | None = None) -> int:
     """Generate the book's pages; exit 2 when ``_toc.yml`` names a page that does not exist."""
-    parser = argparse.ArgumentParser(prog="python -m mechlib.bookbuild")
+    parser = argparse.ArgumentParser(prog="python -m mechlib.pipeline book")
     parser.add_argument("--executed", type=Path, default=REPO_ROOT / "build" / "executed")
     parser.add_argument("--records", type=Path, default=records_dir())
     parser.add_argument("--book", type=Path, default=REPO_ROOT / "book")

@@ -15,7 +15,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
-from mechlib.book.cells import KNOWN_WARNINGS
+from mechlib.pipeline.book.cells import KNOWN_WARNINGS
 
 REMOTE = re.compile(r"^\s*(?:https?:)?//", re.IGNORECASE)
 #: elements whose URL attributes the browser fetches by itself (an <a href> waits for a click)

@@ -1,0 +1,33 @@
+"""Where a build puts things, and the environment variables that move them.
+
+The one place that names the repository's build folders and the ``MECHLIB_*`` variables: the
+notebooks' :class:`~mechlib.records.Recorder` writes to :func:`records_dir`, the DOE chapter
+caches FE results in :func:`fe_cache_dir`, and the build wing sets the variables when it
+executes a notebook (a re-run into its own folders, ``make run`` into ``build/runs``).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
+#: the default build: ``make notebooks`` of the ci profile (other profiles: ``build/<profile>``)
+DEFAULT_BUILD = REPO_ROOT / "build"
+#: folder that a notebook's record is written to (default ``build/records``)
+RECORDS_ENV = "MECHLIB_RECORDS"
+#: folder of cached FE results (default ``build/cache/experiments``)
+FE_CACHE_ENV = "MECHLIB_FE_CACHE"
+#: set to "1": a chapter's inputs are read from ``$MECHLIB_RECORDS`` only, never from the default
+#: build's records (the determinism re-run, which must not read the first run's)
+RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
+
+
+def records_dir() -> Path:
+    """Folder that records are written to: ``$MECHLIB_RECORDS`` or ``<repo>/build/records``."""
+    return Path(os.environ.get(RECORDS_ENV, DEFAULT_BUILD / "records"))
+
+
+def fe_cache_dir() -> Path:
+    """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
+    return Path(os.environ.get(FE_CACHE_ENV, DEFAULT_BUILD / "cache" / "experiments"))

@@ -1,0 +1,74 @@
+"""The chapters: their order, and the inputs one takes from another's record — declared once.
+
+Every notebook of ``notebooks/`` is a chapter. :data:`CHAPTERS` is the order they execute in
+(each after the chapters whose records it reads); :data:`CHAPTER_INPUTS` says which of a
+chapter's parameters are filled from which record. The Makefile reads both from here (this file
+runs with the standard library alone, before the environment exists)::
+
+    python3 mechlib/pipeline/chapters.py order   # the chapters, in execution order
+    python3 mechlib/pipeline/chapters.py edges   # chapter:upstream pairs, one per input record
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+from pathlib import Path
+
+#: Execution order: a chapter comes after every chapter it takes an input from.
+CHAPTERS: tuple[str, ...] = (
+    "published_doe",
+    "hexflex_model",
+    "virtual_experiments",
+    "fivebar_identification",
+)
+#: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
+#: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it
+#: itself); a key ending in ``.*`` passes every value under that prefix, as a mapping by the rest
+#: of its key (``geometry.thickness`` -> ``{"thickness": ...}``).
+CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
+    "virtual_experiments": {
+        "geometry": ("hexflex_model", "geometry.*"),
+        "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
+    },
+}
+
+
+def upstream(chapter: str) -> list[str]:
+    """The chapters whose records ``chapter`` reads, in :data:`CHAPTERS` order."""
+    names = {up for up, _ in CHAPTER_INPUTS.get(chapter, {}).values()}
+    return [c for c in CHAPTERS if c in names]
+
+
+def in_order(notebooks: Iterable[Path]) -> list[Path]:
+    """Notebook paths in :data:`CHAPTERS` order (any other notebook after them, by name)."""
+    rank = {name: i for i, name in enumerate(CHAPTERS)}
+    return sorted(notebooks, key=lambda p: (rank.get(Path(p).stem, len(rank)), Path(p).stem))
+
+
+def check_order() -> None:
+    """Raise ``ValueError`` unless every input comes from a chapter that executes earlier."""
+    for chapter, inputs in CHAPTER_INPUTS.items():
+        for name, (up, _) in inputs.items():
+            if chapter not in CHAPTERS or up not in CHAPTERS[: CHAPTERS.index(chapter)]:
+                raise ValueError(
+                    f"input {name!r} of {chapter!r} comes from {up!r}, which is not a chapter "
+                    f"executed before it; CHAPTERS: {list(CHAPTERS)}"
+                )
+
+
+def main(argv: list[str]) -> int:
+    """``order``: the chapters one per word; ``edges``: ``chapter:upstream`` words (for make)."""
+    check_order()
+    if argv == ["order"]:
+        print(" ".join(CHAPTERS))
+    elif argv == ["edges"]:
+        print(" ".join(f"{c}:{u}" for c in CHAPTERS for u in upstream(c)))
+    else:
+        print("usage: chapters.py order|edges", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))

@@ -1,0 +1,90 @@
+"""The determinism check: every notebook executed again, cold, and its record compared byte for
+byte with the first run's (``make rerun``, then the last step of ``make test``).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+from mechlib.paths import FE_CACHE_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
+from mechlib.pipeline.chapters import in_order
+from mechlib.pipeline.execute import input_arguments, papermill_command
+from mechlib.pipeline.references import compare
+from mechlib.records import load
+
+
+def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
+    """Execute every notebook again, cold, into ``out`` (emptied first).
+
+    The executed notebooks go to ``out/<name>.ipynb``, their records to ``out/records``
+    (``$MECHLIB_RECORDS``), and their FE results to an empty cache of their own,
+    ``out/fe-cache`` (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares
+    nothing with a first run, so the two can run at the same time (``make test`` does). Notebooks
+    run in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each after the chapters
+    whose records give it inputs, read strictly from the re-run's own records
+    (``$MECHLIB_RECORDS_STRICT``), never the first run's.
+
+    Raises
+    ------
+    RuntimeError
+        If a notebook fails, naming it and its executed copy (which holds the traceback), with
+        the end of papermill's error output.
+    """
+    out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
+    shutil.rmtree(out, ignore_errors=True)
+    (out / "records").mkdir(parents=True)
+    env = dict(
+        os.environ,
+        **{
+            RECORDS_ENV: str(out / "records"),
+            FE_CACHE_ENV: str(out / "fe-cache"),
+            RECORDS_STRICT_ENV: "1",
+        },
+    )
+    for nb in in_order(Path(notebooks).glob("*.ipynb")):
+        print(f"re-run: executing {nb.name}", flush=True)
+        inputs = input_arguments(nb.stem, out / "records", strict=True)
+        cmd = papermill_command(nb, out / nb.name, inputs, python=python)
+        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+        if done.returncode != 0:
+            tail = "\n".join(done.stderr.splitlines()[-20:])
+            raise RuntimeError(
+                f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
+                f"{out / nb.name}):\n{tail}"
+            )
+
+
+def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
+    """Each notebook whose re-run record is not byte-identical to its first one, with the
+    values that differ (empty: the two runs agree)."""
+    problems = []
+    for nb in sorted(Path(notebooks).glob("*.ipynb")):
+        first, second = Path(records) / f"{nb.stem}.json", Path(rerun_records) / f"{nb.stem}.json"
+        missing = [
+            f"{which} record at {path}"
+            for which, path in (("first-run", first), ("re-run", second))
+            if not path.exists()
+        ]
+        if missing:
+            problems.append(f"{nb.stem}: no " + " and no ".join(missing))
+        elif second.read_bytes() != first.read_bytes():
+            diffs = compare(load(second), load(first))
+            problems.append(f"{nb.stem}: second run differs: {diffs or 'formatting only'}")
+    return problems
+
+
+def rerun_identical(records: Path, notebooks: Path, python: str = sys.executable) -> list[str]:
+    """Execute every notebook again (:func:`rerun`, in a temporary folder) and check its record
+    is byte-identical to the one in ``records`` (:func:`rerun_differences`).
+
+    The second run starts from an empty FE cache (``$MECHLIB_FE_CACHE`` in a temporary folder),
+    so it checks that two cold computations agree, not merely that cached results are returned.
+    """
+    with tempfile.TemporaryDirectory() as tmp:
+        rerun(notebooks, Path(tmp), python=python)
+        return rerun_differences(records, Path(tmp) / "records", notebooks)

@@ -1,0 +1,116 @@
+"""The house's two wings and its import graph, read statically from the sources.
+
+* The science wing (``mechlib`` minus ``mechlib.pipeline``) never imports the build wing
+  (``mechlib.pipeline``): notebooks import only the science wing, and the Makefile re-executes
+  them when a science file changes (its ``MECHLIB_SRC`` leaves the build wing out).
+* No two modules import each other, through any path, at module level or inside a function or
+  an ``if TYPE_CHECKING:`` block.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+
+from mechlib.paths import REPO_ROOT
+
+MECHLIB = REPO_ROOT / "mechlib"
+BUILD_WING = "mechlib.pipeline"
+#: beside both wings: ``make bench`` times the science wing on a build's records and executed
+#: notebooks, so it may read what the build wing writes (and import it)
+TOOLS = ("mechlib.bench",)
+#: left out of the circle check (none)
+UNCHECKED: set[str] = set()
+#: import circles accepted (none)
+TOLERATED_CIRCLES: list[set[str]] = []
+
+
+def _name(path) -> str:
+    parts = path.relative_to(REPO_ROOT).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = {_name(p): p for p in sorted(MECHLIB.rglob("*.py"))}
+
+
+def imports_of(module: str) -> set[str]:
+    """The mechlib modules that ``module`` imports anywhere in its source."""
+    found = set()
+    for node in ast.walk(ast.parse(MODULES[module].read_text())):
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            for alias in node.names:
+                sub = f"{node.module}.{alias.name}"
+                found.add(sub if sub in MODULES else node.module)
+    return {m for m in found if m in MODULES and m != module}
+
+
+GRAPH = {m: imports_of(m) for m in MODULES}
+
+
+def _in(module: str, package: str) -> bool:
+    return module == package or module.startswith(package + ".")
+
+
+def circles(graph: dict[str, set[str]]) -> list[set[str]]:
+    """The strongly connected components of more than one module (Tarjan's algorithm)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    found: list[set[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = set()
+            while True:
+                w = stack.pop()
+                component.add(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                found.append(component)
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_the_graph_is_read() -> None:
+    assert "mechlib.records" in GRAPH["mechlib.pipeline.execute"]
+    assert "mechlib.hexflex.geometry" in GRAPH["mechlib.hexflex.model"]  # `from pkg import mod`
+    assert circles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [{"a", "b", "c"}]
+
+
+def test_the_science_wing_never_imports_the_build_wing() -> None:
+    crossing = {
+        m: sorted(i for i in imports if _in(i, BUILD_WING))
+        for m, imports in GRAPH.items()
+        if not _in(m, BUILD_WING) and not any(_in(m, t) for t in TOOLS)
+    }
+    assert {m: i for m, i in crossing.items() if i} == {}
+
+
+def test_the_makefile_reexecutes_notebooks_on_a_science_change_only() -> None:
+    makefile = (REPO_ROOT / "Makefile").read_text()
+    source = re.search(r"^MECHLIB_SRC\s*:=(.*)$", makefile, re.M)
+    assert source and "$(filter-out mechlib/pipeline/%," in source.group(1)
+
+
+def test_no_two_modules_import_each_other() -> None:
+    checked = {m: i - UNCHECKED for m, i in GRAPH.items() if m not in UNCHECKED}
+    assert [c for c in circles(checked) if c not in TOLERATED_CIRCLES] == []
+
+
+def test_every_module_is_under_400_lines() -> None:
+    long = {m: n for m, p in MODULES.items() if (n := len(p.read_text().splitlines())) >= 400}
+    assert long == {}
