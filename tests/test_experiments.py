@@ -123,6 +123,11 @@ def test_a_failed_task_is_named_and_completed_results_are_kept(tmp_path) -> None
     np.testing.assert_allclose(full[250:500], ex.model_for(SPEC).poses(d[250:500]))
 
 
+def _poses(kind: str, forces: np.ndarray) -> np.ndarray:
+    """A fake task's result: 2 × forces as the pose, in every convention the kind has."""
+    return np.tile(2.0 * forces, (1, ex._WIDTH[kind] // 6))
+
+
 class FakeTask:
     """Stands in for the FE task: a known pose per row, and an exception at one call."""
 
@@ -133,7 +138,7 @@ class FakeTask:
         self.calls += 1
         if self.calls == self.fail_at:
             raise self.error
-        return 2.0 * forces
+        return _poses(kind, forces)
 
 
 def test_ctrl_c_in_a_task_stops_the_run_at_once(monkeypatch, tmp_path) -> None:
@@ -252,7 +257,7 @@ def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch)
     def task(spec, kind, forces, steps):
         if forces[0, 0] > 0.5:
             raise ConvergenceError("did not converge", forces[0].tolist(), 2e-3)
-        return 2.0 * forces
+        return _poses(kind, forces)
 
     monkeypatch.setattr(ex, "_task", task)
     d = _design(20)
@@ -269,7 +274,7 @@ def test_failed_non_linear_runs_are_listed_with_forces_and_residual(monkeypatch)
     _, _, lost = ex.run_keeping_failures(SPEC, d[:3], kind="nonlinear", progress=False)
     assert [f.index for f in lost] == [1] and np.isnan(lost[0].residual)
     # nothing failed: every row, no failures
-    monkeypatch.setattr(ex, "_task", lambda spec, kind, forces, steps: 2.0 * forces)
+    monkeypatch.setattr(ex, "_task", lambda spec, kind, forces, steps: _poses(kind, forces))
     index, poses, failures = ex.run_keeping_failures(SPEC, d, kind="nonlinear", progress=False)
     assert index.tolist() == list(range(20)) and failures == []
 
@@ -293,3 +298,30 @@ def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -
     np.testing.assert_allclose(pooled, here, rtol=1e-8)
     with pytest.raises(ValueError, match="workers must be"):
         ex.worker_pool(0)
+
+
+def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
+    from mechlib.hexflex.finite_pose import finite_poses
+
+    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    d = np.array([[0.3, -0.5, 0.2, 1.0, -0.7, 0.1]]) * 3.0
+    small = ex.run_experiments(spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False)
+    solver = ex.solver_for(spec)
+    u, _ = solver.solve(d[0])
+    np.testing.assert_array_equal(small[0], solver.model.pose_of(u))  # as before, bit for bit
+    # the stage nodes registered exactly are the nodes the small-rotation fit reads: its own
+    # fit of them is the model's pose
+    exact = finite_poses(*solver.model.stage_motion(u))
+    np.testing.assert_allclose(exact["small"], small[0], rtol=1e-9, atol=1e-9 * abs(small).max())
+    for name in ("rotvec", "euler_xyz"):
+        again = ex.run_experiments(
+            spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False, pose=name
+        )
+        np.testing.assert_array_equal(again[0], exact[name])
+    # a tilt of several mrad: the conventions differ (at second order), the translations agree
+    rot, eul = exact["rotvec"], exact["euler_xyz"]
+    assert np.abs(rot[3:] - small[0, 3:]).max() > 0
+    np.testing.assert_allclose(rot[:3], eul[:3], rtol=1e-12)
+    assert len(list(tmp_path.glob("*.npy"))) == 1  # one solve, one cache entry
+    with pytest.raises(ValueError, match="pose must be one of"):
+        ex.run_experiments(spec, d, kind="linear", pose="rotvec", progress=False)

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex.finite_pose import CONVENTIONS, finite_poses
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.hexflex.model import (
     AL7075_POISSON,
@@ -36,9 +37,16 @@ from mechlib.hexflex.sources import model_modules
 from mechlib.params import check_choice, check_int
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
+#: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.finite_pose`): the
+#: small-rotation fit of the stage nodes (the linear model's and the tables' pose), and the exact
+#: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
+#: the first only (a linear displacement field is no finite rotation).
+POSE_CONVENTIONS: tuple[str, ...] = CONVENTIONS
+#: columns a task returns per run: 6 pose components per convention it has
+_WIDTH = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
-_CACHE_VERSION = 1
+_CACHE_VERSION = 2  # 2: a non-linear task stores its poses in the three conventions
 
 
 @dataclass(frozen=True)
@@ -165,7 +173,14 @@ def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndar
     if kind == "linear":
         return model_for(spec).poses(forces)
     solver = solver_for(spec)
-    return np.array([solver.pose(f, steps=steps)[0] for f in forces])
+    model = solver.model
+    rows = []
+    for f in forces:
+        u, _ = solver.solve(f, steps=steps)
+        exact = finite_poses(*model.stage_motion(u))
+        # the small-rotation pose as the linear model computes it (bit for bit), then the others
+        rows.append(np.concatenate([model.pose_of(u)] + [exact[c] for c in CONVENTIONS[1:]]))
+    return np.array(rows)
 
 
 @lru_cache(maxsize=1)
@@ -193,7 +208,7 @@ def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str
 
 
 def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
-    """Save a finished task's poses (n_rows, 6) to ``path``; a failed task saves nothing.
+    """Save a finished task's poses (n_rows, columns) to ``path``; a failed task saves nothing.
 
     Written to a temporary file and renamed, so a reader never sees a partial file (the
     done-callback and the collecting loop may both write it: same content, atomic rename).
@@ -203,23 +218,23 @@ def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
 
     if fut.cancelled() or fut.exception() is not None:
         return
-    res = np.asarray(fut.result(), dtype=float).reshape(n_rows, 6)
+    res = np.asarray(fut.result(), dtype=float).reshape(n_rows, -1)
     fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
     with os.fdopen(fd, "wb") as fh:
         np.save(fh, res)
     os.replace(tmp, path)
 
 
-def _cached_result(path: Path, n_rows: int) -> np.ndarray | None:
-    """The cached poses (n_rows, 6) at ``path``, or ``None`` if absent or unreadable (then the
-    task runs again)."""
+def _cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None:
+    """The cached poses (n_rows, width) at ``path``, or ``None`` if absent or unreadable (then
+    the task runs again)."""
     if not path.exists():
         return None
     try:
         res = np.load(path)
     except (OSError, ValueError, EOFError):
         return None
-    return res if res.shape == (n_rows, 6) and np.all(np.isfinite(res)) else None
+    return res if res.shape == (n_rows, width) and np.all(np.isfinite(res)) else None
 
 
 def check_forces_design(design: object) -> np.ndarray:
@@ -242,6 +257,7 @@ def run_experiments(
     executor: cf.Executor | None = None,
     cache_dir: Path | None = None,
     progress: bool = True,
+    pose: str = "small",
 ) -> np.ndarray:
     """Stage poses (n, 6) [µm, µrad] of the experiments of a force design (n, 6) [N].
 
@@ -261,6 +277,11 @@ def run_experiments(
         Folder of cached task results; ``None`` disables caching.
     progress : bool
         Show a tqdm progress bar over tasks.
+    pose : {"small", "rotvec", "euler_xyz"}
+        The pose convention (``POSE_CONVENTIONS``): the small-rotation fit (default; the only
+        one of a linear run) or, for a non-linear run, the exact rigid registration of the stage
+        nodes as translation + rotation vector or as intrinsic Euler XYZ angles. A non-linear
+        run computes all three (one cache entry): asking for another convention costs no solve.
 
     Raises
     ------
@@ -269,10 +290,13 @@ def run_experiments(
     """
     d = check_forces_design(design)
     kind = check_choice("kind", kind, KINDS)
+    pose = check_choice("pose", pose, POSE_CONVENTIONS if kind == "nonlinear" else ("small",))
+    width = _WIDTH[kind]
+    column = 6 * POSE_CONVENTIONS.index(pose)
     steps = check_int("steps", steps, low=1, high=100)
     block = LINEAR_BLOCK if kind == "linear" else 1
     chunks = [np.arange(i, min(i + block, len(d))) for i in range(0, len(d), block)]
-    out = np.full((len(d), 6), np.nan)
+    out = np.full((len(d), width), np.nan)
     done = np.zeros(len(d), dtype=bool)
     if cache_dir is not None:
         cache_dir = Path(cache_dir)
@@ -281,7 +305,7 @@ def run_experiments(
     pool = executor if executor is not None else InProcessExecutor()
     for rows in chunks:
         path = cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy" if cache_dir else None
-        cached = _cached_result(path, len(rows)) if path is not None else None
+        cached = _cached_result(path, len(rows), width) if path is not None else None
         if cached is not None:
             out[rows], done[rows] = cached, True
             continue
@@ -299,7 +323,7 @@ def run_experiments(
     for fut in cf.as_completed(pending):
         rows = pending[fut]
         try:
-            res = np.asarray(fut.result(), dtype=float).reshape(len(rows), 6)
+            res = np.asarray(fut.result(), dtype=float).reshape(len(rows), width)
         except Exception as err:  # reported below with the run index
             failed.append((int(rows[0]), err))
         else:
@@ -327,11 +351,11 @@ def run_experiments(
             f"{len(lost)} of {len(d)} experiments failed (first: run {first}, forces "
             f"{d[first].tolist()} N: {err}); {int(done.sum())} completed results are kept",
             failed=lost,
-            completed={int(i): out[i].copy() for i in np.flatnonzero(done)},
+            completed={int(i): out[i, column : column + 6].copy() for i in np.flatnonzero(done)},
             reasons=reasons,
             residuals=residuals,
         )
-    return out
+    return out[:, column : column + 6].copy()
 
 
 def run_keeping_failures(

@@ -167,6 +167,13 @@ class HexFlexModel:
         with threadpool_limits(limits=1, user_api="blas"):  # see back_substitute
             return self.fe.fit @ reduced[self.fe.stage_idx]
 
+    def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The stage's nodes (m, 3) [mm] and their displacements (m, 3) [mm] in the reduced
+        displacement vector ``reduced``: what :meth:`pose_of` fits, for an exact rigid
+        registration (:func:`mechlib.hexflex.finite_pose.finite_poses`)."""
+        points = self.fe.coors[geo.in_stage(self.fe.coors, self.geometry)]
+        return points, np.asarray(reduced)[self.fe.stage_idx].reshape(-1, 3)
+
     def poses(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: back-substitutions."""
         return self.pose_of(self.solve_reduced(forces)).T

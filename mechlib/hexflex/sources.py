@@ -10,8 +10,12 @@ import ast
 import importlib.util
 from pathlib import Path
 
-#: The modules a task runs (the linear model and the non-linear solver).
-TASK_MODULES: tuple[str, ...] = ("mechlib.hexflex.model", "mechlib.hexflex.nonlinear")
+#: The modules a task runs (the linear model, the non-linear solver, the finite-rotation pose).
+TASK_MODULES: tuple[str, ...] = (
+    "mechlib.hexflex.model",
+    "mechlib.hexflex.nonlinear",
+    "mechlib.hexflex.finite_pose",
+)
 
 
 def model_modules() -> tuple[str, ...]:
