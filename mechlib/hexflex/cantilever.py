@@ -24,6 +24,7 @@ is the speed wing). Units: mm, N, MPa.
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
@@ -35,6 +36,7 @@ from threadpoolctl import threadpool_limits
 from mechlib.hexflex import problem as fe
 from mechlib.hexflex.factor import factorise
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
+from mechlib.hexflex.nonlinear import NonlinearSolver, SolveStats
 from mechlib.params import check_float, check_int, check_matrix
 
 #: Default beam: length [mm] and square section side [mm] (L/h = 50).
@@ -249,12 +251,12 @@ class Cantilever:
         rotation = math.atan2(-float(z @ xc), float(z @ zc))
         return TipResponse(tip[2] / self.length, -tip[0] / self.length, rotation)
 
-    def solve(self, alpha: float, steps: int | None = None, solver=None) -> tuple[TipResponse, Any]:
+    def solve(
+        self, alpha: float, steps: int | None = None, solver: NonlinearSolver | None = None
+    ) -> tuple[TipResponse, SolveStats]:
         """FE tip response and ``SolveStats`` at α = PL²/EI (in [0, ``MAX_ALPHA``]) by
         ``NonlinearSolver.solve`` in ``steps`` load steps (default ``ceil(alpha / ALPHA_STEP)``),
         with ``solver`` if given (one built on this model: it keeps the Cholesky analysis)."""
-        from mechlib.hexflex.nonlinear import NonlinearSolver
-
         alpha = check_alpha(alpha)
         if steps is None:
             steps = max(1, math.ceil(alpha / ALPHA_STEP - 1e-9))
@@ -374,10 +376,6 @@ def mesh_study(
         ``elastica`` (n_alpha, 3) as :class:`TipResponse`, ``relative`` = fe / elastica − 1,
         ``seconds`` (n_mesh,): model and solves.
     """
-    import time
-
-    from mechlib.hexflex.nonlinear import NonlinearSolver
-
     grid = np.asarray(meshes, dtype=int).reshape(-1, 2)
     loads = [check_alpha(a) for a in np.atleast_1d(np.asarray(alphas, dtype=float))]
     ref = np.array([elastica_tip(a) for a in loads])
