@@ -11,6 +11,7 @@ import pytest
 from scipy.integrate import solve_bvp
 
 from mechlib.hexflex.cantilever import (
+    ELASTICA_TOL,
     MAX_ALPHA,
     Cantilever,
     box_hexahedra,
@@ -33,14 +34,7 @@ BISSHOPP_DRUCKER_ALPHA_3 = 0.60
 BISSHOPP_DRUCKER_TOL = 5e-3
 #: The closed form against SciPy's collocation BVP solver (its tolerance 1e-10).
 BVP_TOL = 1e-7
-#: FE (default mesh: 32 × 1 × 1 Q2, L/h = 50) against the elastica, relative, per quantity
-#: (δ/L, shortening/L, θ₀), from ``cantilever.mesh_study`` at α = 0.25, 1, 2: the largest
-#: difference of the finer meshes (64 × 1 × 1 and 32 × 2 × 2) — the solid's own difference, for
-#: Al 7075 (ν = 0.33) chiefly the clamp's Poisson restraint (−0.18 %, −0.29 %, −0.14 %; it halves
-#: at L/h = 100) — plus the default mesh's largest distance to them (0.02 %, 0.03 %, 0.013 %),
-#: rounded up. The default mesh is at −0.18 %, −0.30 %, −0.14 %; 8 elements (−1.2 %, −2.6 %,
-#: −0.9 % at α = 2) fail it.
-FE_TOL = (0.002, 0.0035, 0.0015)
+FE_TOL = ELASTICA_TOL
 #: The same with ν = 0 (no Poisson restraint at the clamp): what is left is shear, +0.02 % in δ
 #: (Timoshenko's PL/κGA: +0.024 %), and no rotation change; 128 × 1 × 1 elements: +0.020…0.032 %,
 #: +0.042…0.062 %, +0.0003…0.006 %; the default mesh within 0.010 %, 0.019 %, 0.005 % of it.

@@ -322,6 +322,10 @@ def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
     rot, eul = exact["rotvec"], exact["euler_xyz"]
     assert np.abs(rot[3:] - small[0, 3:]).max() > 0
     np.testing.assert_allclose(rot[:3], eul[:3], rtol=1e-12)
+    both = ex.run_experiments(
+        spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False, pose="all"
+    )
+    np.testing.assert_array_equal(both[0], np.concatenate([small[0], rot, eul]))
     assert len(list(tmp_path.glob("*.npy"))) == 1  # one solve, one cache entry
     with pytest.raises(ValueError, match="pose must be one of"):
         ex.run_experiments(spec, d, kind="linear", pose="rotvec", progress=False)

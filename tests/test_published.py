@@ -51,8 +51,8 @@ def test_the_claimed_main_factors_are_the_non_zero_pattern_of_eq8() -> None:
 def test_one_spelling_of_the_response_labels_and_units() -> None:
     from mechlib.hexflex import pose
 
-    # pose.POSE_LABELS/POSE_UNITS are kept (the lead's file) until they become aliases or go
-    assert pose.POSE_LABELS == pub.RESPONSES and pose.POSE_UNITS == pub.RESPONSE_UNITS
+    # one spelling: the pose module keeps no labels of its own
+    assert not hasattr(pose, "POSE_LABELS") and not hasattr(pose, "POSE_UNITS")
 
 
 def test_table2_is_converted_to_the_units_of_its_header() -> None:

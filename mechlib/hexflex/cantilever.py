@@ -61,6 +61,11 @@ CLAMP_DEPTHS = 0.25
 #: in more steps, each step after the first went to Newton (5–7 corrections), so more steps
 #: cost more (0.9 s for 1, 1.2 s for 2, 2.1 s for 4 at 16 elements) for the same answer.
 ALPHA_STEP = 1.0
+#: FE (default mesh 32 × 1 × 1 Q2, L/h = 50) against the elastica, relative, per quantity (δ/L,
+#: shortening/L, θ₀), from :func:`mesh_study` at α = 0.25, 1, 2: the finer meshes' largest
+#: difference (64 × 1 × 1, 32 × 2 × 2; chiefly the clamp's Poisson restraint, −0.18 %, −0.29 %,
+#: −0.14 %, halving at L/h = 100) plus the default mesh's distance to them, rounded up.
+ELASTICA_TOL: tuple[float, float, float] = (0.002, 0.0035, 0.0015)
 #: Bisection and root tolerance of the tip rotation θ₀ [rad] (double-precision round-off).
 _ROOT_XTOL = 1e-15
 #: Relative tolerance of coordinate selections (end faces).

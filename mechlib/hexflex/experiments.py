@@ -277,11 +277,12 @@ def run_experiments(
         Folder of cached task results; ``None`` disables caching.
     progress : bool
         Show a tqdm progress bar over tasks.
-    pose : {"small", "rotvec", "euler_xyz"}
+    pose : {"small", "rotvec", "euler_xyz", "all"}
         The pose convention (``POSE_CONVENTIONS``): the small-rotation fit (default; the only
         one of a linear run) or, for a non-linear run, the exact rigid registration of the stage
-        nodes as translation + rotation vector or as intrinsic Euler XYZ angles. A non-linear
-        run computes all three (one cache entry): asking for another convention costs no solve.
+        nodes as translation + rotation vector or as intrinsic Euler XYZ angles; ``"all"``: the
+        three side by side, (n, 18) in that order. A non-linear run computes all three (one
+        cache entry): asking for another convention costs no solve.
 
     Raises
     ------
@@ -290,9 +291,14 @@ def run_experiments(
     """
     d = check_forces_design(design)
     kind = check_choice("kind", kind, KINDS)
-    pose = check_choice("pose", pose, POSE_CONVENTIONS if kind == "nonlinear" else ("small",))
+    allowed = (*POSE_CONVENTIONS, "all") if kind == "nonlinear" else ("small",)
+    pose = check_choice("pose", pose, allowed)
     width = _WIDTH[kind]
-    column = 6 * POSE_CONVENTIONS.index(pose)
+    cols = (
+        slice(0, width)
+        if pose == "all"
+        else slice(6 * allowed.index(pose), 6 * allowed.index(pose) + 6)
+    )
     steps = check_int("steps", steps, low=1, high=100)
     block = LINEAR_BLOCK if kind == "linear" else 1
     chunks = [np.arange(i, min(i + block, len(d))) for i in range(0, len(d), block)]
@@ -351,11 +357,11 @@ def run_experiments(
             f"{len(lost)} of {len(d)} experiments failed (first: run {first}, forces "
             f"{d[first].tolist()} N: {err}); {int(done.sum())} completed results are kept",
             failed=lost,
-            completed={int(i): out[i, column : column + 6].copy() for i in np.flatnonzero(done)},
+            completed={int(i): out[i, cols].copy() for i in np.flatnonzero(done)},
             reasons=reasons,
             residuals=residuals,
         )
-    return out[:, column : column + 6].copy()
+    return out[:, cols].copy()
 
 
 def run_keeping_failures(
@@ -382,7 +388,8 @@ def run_keeping_failures(
         return np.arange(len(d)), run_experiments(spec, d, **kwargs), []
     except ExperimentError as err:
         index = np.array(sorted(err.completed), dtype=int)
-        poses = np.array([err.completed[i] for i in index], dtype=float).reshape(-1, 6)
+        n_cols = _WIDTH["nonlinear"] if kwargs.get("pose") == "all" else 6
+        poses = np.array([err.completed[i] for i in index], dtype=float).reshape(-1, n_cols)
         failures = [
             FailedRun(i, tuple(d[i].tolist()), err.residuals.get(i, np.nan), err.reasons.get(i, ""))
             for i in err.failed

@@ -13,8 +13,6 @@ from mechlib.params import check_matrix
 
 #: Scale from (mm, rad) to the thesis's pose units (µm, µrad).
 POSE_SCALE = np.array([1e3, 1e3, 1e3, 1e6, 1e6, 1e6])
-POSE_LABELS: tuple[str, ...] = ("x", "y", "z", "θx", "θy", "θz")
-POSE_UNITS: tuple[str, ...] = ("µm", "µm", "µm", "µrad", "µrad", "µrad")
 
 
 def rigid_basis(points: np.ndarray, center: np.ndarray | None = None) -> np.ndarray:
