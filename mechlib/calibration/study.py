@@ -127,20 +127,24 @@ def select_traditional(study: Study, n_shared: int) -> np.ndarray:
         )
 
 
-def _errors(study: Study, phis: Sequence[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    err = cm.pose_errors(study.mech, phis, study.real, study.grid, study.jac_grid)
-    ang = study.mech.angular
-    return np.sum(err[:, ~ang] ** 2, axis=1), np.sum(err[:, ang] ** 2, axis=1)
-
-
-def _record(out: dict, key: str, study: Study, phi: np.ndarray, seconds: float) -> None:
-    pos, ang = _errors(study, ci.split(study.mech, phi))
-    o = out.setdefault(key, {"param": [], "pos_rms": [], "ang_rms": [], "time": [], "local": 0})
-    o["param"].append((phi - np.concatenate(study.real)) / study.scale)
-    o["pos_rms"].append(np.sqrt(pos.mean()))
-    o["ang_rms"].append(np.sqrt(ang.mean()) if ang.size else 0.0)
-    o["time"].append(seconds)
-    o["local"] = o["local"] + pos
+def _record(out: dict, study: Study, fits: Mapping[str, tuple[np.ndarray, float]]) -> None:
+    """Pose errors over the grid of every identified model (one batched forward kinematics)."""
+    m, n = study.mech, len(study.grid)
+    q = np.vstack([cm.readings(m, ci.split(m, phi), study.grid) for phi, _ in fits.values()])
+    k = len(fits)
+    reached = cm.forward(
+        m, study.real, q, np.tile(study.grid, (k, 1)), np.tile(study.jac_grid, (k, 1, 1))
+    )
+    err = (reached - np.tile(study.grid, (k, 1))).reshape(k, n, m.dof)
+    ang = m.angular
+    for (key, (phi, seconds)), e in zip(fits.items(), err, strict=True):
+        pos = np.sum(e[:, ~ang] ** 2, axis=1)
+        o = out.setdefault(key, {"param": [], "pos_rms": [], "ang_rms": [], "time": [], "local": 0})
+        o["param"].append((phi - np.concatenate(study.real)) / study.scale)
+        o["pos_rms"].append(np.sqrt(pos.mean()))
+        o["ang_rms"].append(np.sqrt(np.sum(e[:, ang] ** 2, axis=1).mean()) if ang.any() else 0.0)
+        o["time"].append(seconds)
+        o["local"] = o["local"] + pos
 
 
 def monte_carlo(
@@ -181,28 +185,29 @@ def monte_carlo(
             ci.check_identifiable(leg.jacobian(leg.nominal, study.candidates[idx]), leg.names)
         for idx in trad_sets.values():
             ci.check_identifiable(ci.total_jacobian(m, m.nominal, study.candidates[idx]), m.names)
+        sets = [*dc_sets, *trad_sets.values()]
+        cuts = np.cumsum([len(idx) for idx in sets])[:-1]
+        every = np.concatenate(sets)
         for _ in range(n_trials):
-            ok, fits = True, []
-            t_dc = 0.0
-            for k, (leg, idx) in enumerate(zip(m.legs, dc_sets, strict=True)):
-                r, q = cm.simulate(
-                    m, study.real, study.candidates[idx], sigma, rng, study.jac_candidates[idx]
-                )
+            # every pose set of the trial measured in one batch (one forward kinematics)
+            r_all, q_all = cm.simulate(
+                m, study.real, study.candidates[every], sigma, rng, study.jac_candidates[every]
+            )
+            meas = list(zip(np.split(r_all, cuts), np.split(q_all, cuts), strict=True))
+            ok, phis, t_dc = True, [], 0.0
+            for k, (leg, (r, q)) in enumerate(zip(m.legs, meas, strict=False)):
                 t0 = time.perf_counter()
                 fit = ci.identify_leg(leg, r, q[:, k], check=False)
                 t_dc += time.perf_counter() - t0
                 ok &= fit.converged
-                fits.append(fit.phi)
-            _record(out, "dc", study, np.concatenate(fits), t_dc)
-            for key, idx in trad_sets.items():
-                r, q = cm.simulate(
-                    m, study.real, study.candidates[idx], sigma, rng, study.jac_candidates[idx]
-                )
+                phis.append(fit.phi)
+            fits = {"dc": (np.concatenate(phis), t_dc)}
+            for key, (r, q) in zip(trad_sets, meas[m.n_limbs :], strict=True):
                 t0 = time.perf_counter()
                 fit = ci.identify_traditional(m, r, q, check=False)
-                seconds = time.perf_counter() - t0
+                fits[key] = (fit.phi, time.perf_counter() - t0)
                 ok &= fit.converged
-                _record(out, key, study, fit.phi, seconds)
+            _record(out, study, fits)
             converged.append(ok)
     res = {}
     for key, o in out.items():
@@ -280,3 +285,38 @@ def sweep(
         for b in BUDGETS:
             rows.append({"sigma": s, "n_per_leg": n, "budget": b, **compare(mc, b)})
     return rows
+
+
+@dataclass(frozen=True)
+class Run:
+    """Selected pose sets and the Monte Carlo of one mechanism at one pose budget."""
+
+    n_per_leg: int
+    shared: dict[str, int]
+    dc_sets: list[np.ndarray]
+    trad_sets: dict[str, np.ndarray]
+    mc: dict[str, dict[str, np.ndarray]]
+
+
+def run(study: Study, n_per_leg: int, sigma: float, n_trials: int, seed: int) -> Run:
+    """Select D&C's and both traditional budgets' poses, then run :func:`monte_carlo`."""
+    shared = budgets(study.mech, n_per_leg)
+    dc = select_dc(study, n_per_leg)
+    trad = {b: select_traditional(study, n) for b, n in shared.items()}
+    return Run(n_per_leg, shared, dc, trad, monte_carlo(study, dc, trad, sigma, n_trials, seed))
+
+
+def conditioning(study: Study, result: Run) -> dict[str, float]:
+    """Inverse condition number (columns scaled) of the identification matrices at the nominal
+    parameters: the worst D&C leg and the traditional total matrix under each budget."""
+    m, cand = study.mech, study.candidates
+    legs = [
+        ci.identifiability(leg.jacobian(leg.nominal, cand[idx]), leg.names)["conditioning"]
+        for leg, idx in zip(m.legs, result.dc_sets, strict=True)
+    ]
+    out = {"dc": float(min(legs))}
+    for b, idx in result.trad_sets.items():
+        out[b] = ci.identifiability(ci.total_jacobian(m, m.nominal, cand[idx]), m.names)[
+            "conditioning"
+        ]
+    return out

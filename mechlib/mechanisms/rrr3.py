@@ -114,7 +114,7 @@ def mechanism(min_conditioning: float = 0.05, **design: float) -> Mechanism:
     )
 
 
-def box(mech: Mechanism) -> tuple[np.ndarray, np.ndarray]:
+def box(mech: Mechanism | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Low and high corners of the calibration box."""
     half = np.array([HALF_SIDE, HALF_SIDE, HALF_ANGLE])
     return -half, half
