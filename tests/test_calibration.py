@@ -125,3 +125,18 @@ def test_monte_carlo_is_seeded_and_noise_free_trials_are_exact() -> None:
     exact = st.monte_carlo(study, dc, trad, 0.0, 1, 7)
     assert exact["dc"]["pos_rms"][0] < 1e-10 and exact["thesis"]["pos_rms"][0] < 1e-10
     assert np.abs(exact["thesis"]["param"]).max() < 1e-8
+
+
+def test_greedy_selection_by_o1_variants_and_d_optimality_agree_with_active_calibration() -> None:
+    c = MECH.legs[0].jacobian(MECH.nominal[0], CANDIDATES)
+    picks = {name: sel.select_greedy(c, 12, name) for name in sel.INDICES}
+    d_opt = picks["D-optimality"]
+    for name in ("O1 (thesis, Eq 18)", "O1 (Borm & Menq)"):
+        np.testing.assert_array_equal(picks[name], d_opt)
+    np.testing.assert_array_equal(d_opt, sel.select_active(c, 12, max_passes=0))
+    # O3 maximises its own index: at least as good as the D-optimal set on O3
+    assert sel.observability_o3(c[picks["O3 (inverse condition number)"]]) >= sel.observability_o3(
+        c[d_opt]
+    )
+    with pytest.raises(ValueError, match="index must be one of"):
+        sel.select_greedy(c, 12, "O9")

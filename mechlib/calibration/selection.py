@@ -240,3 +240,54 @@ def select_shared(legs: object, n_select: int, max_passes: int = 20) -> np.ndarr
         if not improved:
             break
     return np.array(chosen)
+
+
+#: Observability indices a selection can maximise (:func:`select_greedy`), by name.
+INDICES = {
+    "O1 (thesis, Eq 18)": observability_o1,
+    "O1 (Borm & Menq)": observability_borm_menq,
+    "O3 (inverse condition number)": observability_o3,
+    "D-optimality": d_optimality,
+}
+
+
+def _stacked_index(stack: np.ndarray, index: str) -> np.ndarray:
+    """:data:`INDICES` ``index`` of every matrix of ``stack`` (k, m, n) at once."""
+    if index.startswith("O3"):
+        norm = np.linalg.norm(stack, axis=1, keepdims=True)
+        s = np.linalg.svd(stack / np.where(norm > 0, norm, 1.0), compute_uv=False)
+        return s[:, -1] / s[:, 0]
+    s = np.linalg.svd(stack, compute_uv=False)
+    with np.errstate(divide="ignore"):
+        geo = np.exp(np.mean(np.log(s), axis=1))
+    m, n = stack.shape[1:]
+    return {"O1 (thesis, Eq 18)": geo / n, "O1 (Borm & Menq)": geo / np.sqrt(m)}.get(index, geo**2)
+
+
+def select_greedy(candidates: object, n_select: int, index: str) -> np.ndarray:
+    """Greedy selection of ``n_select`` rows of ``candidates`` (N, n) maximising ``index`` (a key
+    of :data:`INDICES`), each step scoring every free candidate by the index of the set with it
+    (one batched SVD a step).
+
+    The first ``n`` picks maximise D-optimality (an index of fewer rows than columns is not
+    defined). Slower than :func:`select_active`, but valid for indices without a determinant
+    update (O3); for a fixed set size the three O1/D-optimality indices are monotone functions of
+    ``det(CᵀC)`` and select alike.
+    """
+    c = np.asarray(candidates, dtype=float)
+    if index not in INDICES:
+        raise ValueError(f"index must be one of {sorted(INDICES)}, got {index!r}")
+    n_select = _check_count(n_select, c[:, None, :])
+    chosen = list(select_active(c, min(n_select, c.shape[1]), max_passes=0))
+    free = np.ones(len(c), dtype=bool)
+    free[chosen] = False
+    while len(chosen) < n_select:
+        rest = np.flatnonzero(free)
+        stack = np.concatenate(
+            [np.broadcast_to(c[chosen], (len(rest), len(chosen), c.shape[1])), c[rest, None, :]],
+            axis=1,
+        )
+        j = int(rest[int(np.argmax(_stacked_index(stack, index)))])
+        chosen.append(j)
+        free[j] = False
+    return np.array(chosen)

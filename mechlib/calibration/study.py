@@ -320,3 +320,26 @@ def conditioning(study: Study, result: Run) -> dict[str, float]:
             "conditioning"
         ]
     return out
+
+
+def index_comparison(
+    study: Study, n_per_leg: int, sigma: float, n_trials: int, seed: int
+) -> dict[str, dict[str, float]]:
+    """D&C with each leg's poses chosen by each observability index of
+    :data:`mechlib.calibration.selection.INDICES` (greedy, same budget), and by chance: the
+    workspace RMS position error [m] and the parameter RMS of a seeded Monte Carlo per index
+    (one Monte Carlo per distinct selection)."""
+    n = _check_count(study, "n_per_leg", n_per_leg)
+    rng = np.random.default_rng(check_int("seed", seed, low=0))
+    out = {}
+    with threadpool_limits(1):
+        jacs = [leg.jacobian(leg.nominal, study.candidates) for leg in study.mech.legs]
+        choices = {name: [sel.select_greedy(c, n, name) for c in jacs] for name in sel.INDICES}
+    choices["random"] = [rng.choice(len(study.candidates), n, replace=False) for _ in jacs]
+    for name, sets in choices.items():
+        mc = monte_carlo(study, sets, {}, sigma, n_trials, seed)["dc"]
+        out[name] = {
+            "pos_rms": float(mc["pos_rms"].mean()),
+            "param_rms": parameter_rms(mc["param"]),
+        }
+    return out
