@@ -20,6 +20,7 @@ STYLES = {
     "dc": {"color": OURS_COLOR, "marker": "o", "label": "D&C"},
     "thesis": {"color": ACTIVE_COLOR, "marker": "s", "label": "traditional, thesis budget"},
     "matched": {"color": PUBLISHED_COLOR, "marker": "^", "label": "traditional, matched budget"},
+    "equal": {"color": "0.3", "marker": "v", "ls": ":", "label": "traditional, n shared poses"},
 }
 
 
@@ -137,7 +138,7 @@ def costs(
 ) -> Figure:
     """Against the number of legs: the normal-matrix inversion ratio traditional / D&C (Table 6's
     n_limbs² law, the counted flops and the measured solve time), and the measurements per pose
-    budget n (``measurements``: keys ``"dc"``, ``"thesis"``, ``"matched"`` of :data:`STYLES`)."""
+    budget n (``measurements``: keys of :data:`STYLES`)."""
     fig, (a, b) = figure_and_panels(axes, (1, 2), (9.0, 3.4))
     n = np.asarray(n_limbs)
     a.plot(n, n**2, "k--", label="Table 6: n_limbs²")
