@@ -140,3 +140,29 @@ def test_greedy_selection_by_o1_variants_and_d_optimality_agree_with_active_cali
     )
     with pytest.raises(ValueError, match="index must be one of"):
         sel.select_greedy(c, 12, "O9")
+
+
+def test_catalog_builds_each_mechanism_and_refuses_an_unknown_one() -> None:
+    from mechlib.mechanisms import catalog
+
+    sizes = {}
+    for name in catalog.NAMES:
+        built = catalog.build(
+            name, seed=1, disturbance=4e-3, n_candidates=60, n_random_grid=5, slice_points=3
+        )
+        sizes[name] = (built.study.mech.n_limbs, built.study.mech.dof)
+        assert 0 < built.n_slice <= len(built.study.grid)
+    assert sizes == {"5R": (2, 2), "3-RRR": (3, 3), "6-UPS": (6, 6)}
+    with pytest.raises(ValueError, match="mechanism must be one of"):
+        catalog.build(
+            "4-RRR", seed=1, disturbance=4e-3, n_candidates=60, n_random_grid=5, slice_points=3
+        )
+
+
+def test_measurement_matched_budget_equalises_the_counts() -> None:
+    from mechlib.mechanisms import gough_stewart
+
+    gs = gough_stewart.mechanism()
+    b = st.budgets(gs, 24)
+    counts = st.measurement_counts(gs, 24, b["matched"])
+    assert b["thesis"] == 144 and counts["dc"] == counts["trad"] == 24 * 6 * 7
