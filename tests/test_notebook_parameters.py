@@ -52,3 +52,10 @@ def test_a_dimension_out_of_its_bounds_is_refused_before_meshing(tmp_path: Path)
     assert code != 0
     assert "beam_length [mm] must be in [2.0, 30.0], got 40.0" in output
     assert not (tmp_path / "hexflex_model.json").exists()
+
+
+def test_a_negative_noise_level_is_refused_before_any_computation(tmp_path: Path) -> None:
+    code, output = _run_with("beyond_5r", ["-p", "sigma", "-0.001"], tmp_path)
+    assert code != 0
+    assert "sigma [m, rad] must be" in output and "-0.001" in output
+    assert not (tmp_path / "beyond_5r.json").exists()

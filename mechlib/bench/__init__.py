@@ -127,7 +127,14 @@ def factorisation_orderings() -> dict[str, float]:
     }
 
 
-SECTIONS: tuple[str, ...] = ("postures", "load-cases", "orderings", "nonlinear", "chapter")
+SECTIONS: tuple[str, ...] = (
+    "postures",
+    "load-cases",
+    "orderings",
+    "nonlinear",
+    "chapter",
+    "calibration",
+)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -155,7 +162,38 @@ def main(argv: list[str] | None = None) -> int:
         nlb.print_nonlinear(NEWTON_TOL)
     if "chapter" in only:
         nlb.print_chapter()
+    if "calibration" in only:
+        _print_calibration()
     return 0
+
+
+def _print_calibration() -> None:
+    """Identification cost against the number of legs (5R, 3-RRR, 6-UPS): the normal-matrix
+    inversion ratio counted (Table 6's n_limbs² law) and one normal-equation solve timed."""
+    from mechlib.calibration import mechanism as cm
+    from mechlib.mechanisms import fivebar5r, gough_stewart, rrr3
+
+    rng = np.random.default_rng(0)
+    print("identification cost, traditional / D&C (one thread; 3 poses per parameter):")
+    miw = kin.miw_closed_form(0.75, 1.1, 0.5)
+    _print_cost(fivebar5r.mechanism(), disc_grid((0.0, miw["cy"]), 0.5 * miw["radius"], 0.1)[:18])
+    for mech, box in (
+        (rrr3.mechanism(), rrr3.box()),
+        (gough_stewart.mechanism(), gough_stewart.box()),
+    ):
+        poses = cm.candidate_poses(mech, *box, 200, rng)
+        _print_cost(mech, poses[: 3 * mech.legs[0].size])
+
+
+def _print_cost(mech, poses: np.ndarray) -> None:
+    from mechlib.calibration import cost
+
+    size, t = cost.normal_sizes(mech), cost.time_normal_solves(mech, poses, 2000)
+    print(
+        f"  {mech.name}: n_limbs = {size['n_limbs']}, flops ratio {size['flop_ratio']:g} "
+        f"(n_limbs² = {size['n_limbs'] ** 2}), measured solve-time ratio {t['ratio']:.2f} "
+        f"({1e6 * t['trad']:.1f} µs vs {1e6 * t['dc']:.1f} µs)"
+    )
 
 
 def _print_postures() -> None:

@@ -1,156 +1,23 @@
-"""Observability indices and optimal posture selection (thesis Eq 18; Sun & Hollerbach 2008).
+"""Observability indices and posture selection of the 5R chapter.
 
-A candidate posture contributes a block ``G_j`` (p × n) of rows to the identification matrix:
-one row per leg reading (p = 1 for one leg, p = 2 for the traditional 12-parameter matrix,
-whose block is ``diag(C1_j, C2_j)``). Selection maximises ``det(CᵀC)`` — equivalently the
-observability index O1 of Eq 18 for a fixed number of parameters — by the active calibration
-algorithm: greedy additions with the rank-p determinant update
-``det(M + GᵀG) = det(M) · det(I + G M⁻¹ Gᵀ)`` and a Woodbury update of ``M⁻¹``, followed by
-exchange passes (remove one, add the best) until no exchange increases the determinant.
+The implementation lives in the mechanism-independent core, :mod:`mechlib.calibration.selection`;
+this module keeps the 5R chapter's names.
 """
 
-from __future__ import annotations
+from mechlib.calibration.selection import (
+    IMPROVEMENT_TOL,
+    START_REGULARISATION,
+    observability_borm_menq,
+    observability_o1,
+    select_active,
+    select_reference_svd,
+)
 
-import numpy as np
-
-from mechlib.params import check_int
-
-START_REGULARISATION = 1e-8
-"""Greedy selection starts from M = ε·mean(diag GᵀG)·I so that M⁻¹ exists (Sun & Hollerbach)."""
-IMPROVEMENT_TOL = 1e-12
-"""An exchange must raise log det by more than this to be made (stops cycling on ties)."""
-
-
-def observability_o1(c: object) -> float:
-    """Thesis Eq 18: ``O1 = (s1 s2 … sn)^(1/n) / n`` over the singular values of ``C``."""
-    s = np.linalg.svd(np.asarray(c, dtype=float), compute_uv=False)
-    n = s.size
-    return float(np.exp(np.mean(np.log(s))) / n)
-
-
-def observability_borm_menq(c: object) -> float:
-    """Borm & Menq's O1: ``(s1 … sn)^(1/n) / sqrt(m)``, ``m`` the number of measurements."""
-    c = np.asarray(c, dtype=float)
-    s = np.linalg.svd(c, compute_uv=False)
-    return float(np.exp(np.mean(np.log(s))) / np.sqrt(c.shape[0]))
-
-
-def _blocks(candidates: object) -> np.ndarray:
-    g = np.asarray(candidates, dtype=float)
-    if g.ndim == 2:
-        g = g[:, None, :]
-    if g.ndim != 3 or not np.all(np.isfinite(g)):
-        raise ValueError(f"candidates must be finite blocks of shape (N, p, n), got {g.shape}")
-    return g
-
-
-def _check_count(n_select: int, g: np.ndarray) -> int:
-    n_select = check_int("n_select", n_select, low=1)
-    if n_select > g.shape[0]:
-        raise ValueError(
-            f"n_select must be <= the number of candidates ({g.shape[0]}), got {n_select}"
-        )
-    return n_select
-
-
-def _start(g: np.ndarray) -> np.ndarray:
-    scale = np.mean(np.einsum("jpn,jpn->n", g, g)) / g.shape[0]
-    return np.eye(g.shape[2]) * START_REGULARISATION * scale
-
-
-def _gains(g: np.ndarray, m_inv: np.ndarray, sign: float = 1.0) -> np.ndarray:
-    """log det(I ± G_j M⁻¹ G_jᵀ) for every candidate block (vectorised)."""
-    s = np.einsum("jpn,nm,jqm->jpq", g, m_inv, g)
-    eye = np.eye(g.shape[1])
-    sgn, logdet = np.linalg.slogdet(eye + sign * s)
-    return np.where(sgn > 0, logdet, -np.inf)
-
-
-def _woodbury(m_inv: np.ndarray, gj: np.ndarray, sign: float) -> np.ndarray:
-    """(M ± GᵀG)⁻¹ from M⁻¹."""
-    mg = m_inv @ gj.T
-    inner = np.eye(gj.shape[0]) + sign * gj @ mg
-    return m_inv - sign * mg @ np.linalg.solve(inner, mg.T)
-
-
-def select_active(candidates: object, n_select: int, max_passes: int = 20) -> np.ndarray:
-    """Indices of ``n_select`` candidate postures maximising det(CᵀC) (active calibration).
-
-    Parameters
-    ----------
-    candidates : array_like, shape (N, p, n) or (N, n)
-        Identification-matrix block of every candidate posture.
-    n_select : int
-        Postures to select, at most N.
-    max_passes : int
-        Cap on exchange passes.
-
-    Returns
-    -------
-    numpy.ndarray of int, shape (n_select,)
-    """
-    g = _blocks(candidates)
-    n_select = _check_count(n_select, g)
-    m_inv = np.linalg.inv(_start(g))
-    chosen: list[int] = []
-    free = np.ones(g.shape[0], dtype=bool)
-    for _ in range(n_select):
-        gain = np.where(free, _gains(g, m_inv), -np.inf)
-        j = int(np.argmax(gain))
-        chosen.append(j)
-        free[j] = False
-        m_inv = _woodbury(m_inv, g[j], +1.0)
-    for _ in range(check_int("max_passes", max_passes, low=0)):
-        improved = False
-        for pos in range(n_select):
-            s = chosen[pos]
-            loss = _gains(g[s : s + 1], m_inv, -1.0)[0]
-            m_minus = _woodbury(m_inv, g[s], -1.0)
-            gain = np.where(free, _gains(g, m_minus), -np.inf)
-            j = int(np.argmax(gain))
-            if j != s and gain[j] + loss > IMPROVEMENT_TOL:
-                chosen[pos] = j
-                free[s], free[j] = True, False
-                m_inv = _woodbury(m_minus, g[j], +1.0)
-                improved = True
-        if not improved:
-            break
-    return np.array(chosen)
-
-
-def _logdet_svd(g: np.ndarray, idx: list[int], m0: np.ndarray) -> float:
-    rows = [np.linalg.cholesky(m0).T] + [g[i] for i in idx]
-    s = np.linalg.svd(np.vstack(rows), compute_uv=False)
-    return float(2 * np.sum(np.log(s)))
-
-
-def select_reference_svd(candidates: object, n_select: int, max_passes: int = 20) -> np.ndarray:
-    """The same greedy + exchange search, scoring each candidate by an SVD of the full matrix.
-
-    The plain implementation that :func:`select_active` is checked and benchmarked against.
-    """
-    g = _blocks(candidates)
-    n_select = _check_count(n_select, g)
-    m0 = _start(g)
-    chosen: list[int] = []
-    for _ in range(n_select):
-        scores = [
-            (-np.inf if j in chosen else _logdet_svd(g, [*chosen, j], m0)) for j in range(len(g))
-        ]
-        chosen.append(int(np.argmax(scores)))
-    for _ in range(check_int("max_passes", max_passes, low=0)):
-        improved = False
-        for pos in range(n_select):
-            base = _logdet_svd(g, chosen, m0)
-            rest = chosen[:pos] + chosen[pos + 1 :]
-            scores = [
-                (-np.inf if j in rest or j == chosen[pos] else _logdet_svd(g, [*rest, j], m0))
-                for j in range(len(g))
-            ]
-            j = int(np.argmax(scores))
-            if scores[j] - base > IMPROVEMENT_TOL:
-                chosen[pos] = j
-                improved = True
-        if not improved:
-            break
-    return np.array(chosen)
+__all__ = [
+    "IMPROVEMENT_TOL",
+    "START_REGULARISATION",
+    "observability_borm_menq",
+    "observability_o1",
+    "select_active",
+    "select_reference_svd",
+]

@@ -14,8 +14,8 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import stats
 
+from mechlib.calibration import study as core
 from mechlib.fivebar import identification as idf
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import postures as ps
@@ -27,10 +27,11 @@ N_MIN_POSTURES = kin.N_LEG_PARAMS
 #: (the thesis's budgets, sec. 3.7 items 8 and 10: equal end-effector measurements).
 SHARED_PER_LEG_POSTURE = 2
 #: The thesis's claim "D&C gives the better calibration" holds when D&C's workspace RMS error is
-#: the smaller one in more than this share of the paired trials ...
-CLAIM_MIN_SHARE = 0.5
-#: ... and the Wilcoxon signed-rank test rejects "no difference" at this level (two-sided).
-CLAIM_MAX_P = 0.05
+#: the smaller one in more than CLAIM_MIN_SHARE of the paired trials and the Wilcoxon signed-rank
+#: test rejects "no difference" at CLAIM_MAX_P: the rules (and :func:`mean_ci`,
+#: :func:`paired_verdict`, :func:`claim_holds`) live once in :mod:`mechlib.calibration.study`.
+CLAIM_MIN_SHARE, CLAIM_MAX_P = core.CLAIM_MIN_SHARE, core.CLAIM_MAX_P
+mean_ci, paired_verdict, claim_holds = core.mean_ci, core.paired_verdict, core.claim_holds
 #: Strategy keys of :func:`monte_carlo` and their names in tables.
 STRATEGIES = {"dc": "D&C", "trad": "traditional"}
 M_TO_UM = 1e6
@@ -177,31 +178,6 @@ def monte_carlo(
     arrays["local_sq_trad"] = local["trad"] * (n_trials / used)
     arrays["failed"] = np.asarray(failed, dtype=int)
     return arrays
-
-
-def mean_ci(x: np.ndarray, level: float = 0.95) -> tuple[float, float, float]:
-    """Mean and its t-based confidence interval."""
-    x = np.asarray(x, dtype=float)
-    half = (
-        stats.t.ppf(0.5 + level / 2, len(x) - 1) * x.std(ddof=1) / np.sqrt(len(x))
-        if len(x) > 1
-        else 0.0
-    )
-    return float(x.mean()), float(x.mean() - half), float(x.mean() + half)
-
-
-def paired_verdict(a: np.ndarray, b: np.ndarray) -> dict[str, float]:
-    """Share of trials where ``a < b`` and the Wilcoxon signed-rank p-value of a vs b."""
-    a, b = np.asarray(a), np.asarray(b)
-    p = float(stats.wilcoxon(a, b).pvalue) if len(a) > 1 and np.any(a != b) else 1.0
-    return {"share_a_better": float(np.mean(a < b)), "p_value": p}
-
-
-def claim_holds(verdict: dict[str, float]) -> bool:
-    """Whether a :func:`paired_verdict` of D&C (``a``) against traditional (``b``) supports the
-    thesis's claim: D&C better in more than ``CLAIM_MIN_SHARE`` of the trials, at a Wilcoxon
-    p-value below ``CLAIM_MAX_P``."""
-    return bool(verdict["share_a_better"] > CLAIM_MIN_SHARE and verdict["p_value"] < CLAIM_MAX_P)
 
 
 def parameter_rms(errors: np.ndarray, per_parameter: bool = False) -> np.ndarray | float:
