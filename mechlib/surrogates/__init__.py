@@ -22,11 +22,12 @@ from mechlib.surrogates.families import (
     predict,
 )
 from mechlib.surrogates.inverse import compare_with_truth, invert, jacobian, round_trip_error
-from mechlib.surrogates.scoring import cross_validate, latency_us, score
+from mechlib.surrogates.scoring import compare_families, cross_validate, latency_us, score
 
 __all__ = [
     "FAMILIES",
     "Surrogate",
+    "compare_families",
     "compare_with_truth",
     "cross_validate",
     "fit_surrogate",

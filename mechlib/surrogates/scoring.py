@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 
 import numpy as np
 from sklearn.model_selection import KFold
 from threadpoolctl import threadpool_limits
 
 from mechlib import metamodel
-from mechlib.params import check_int, check_matrix
+from mechlib.params import check_choice, check_int, check_matrix
 from mechlib.surrogates.families import (
+    FAMILIES,
     Surrogate,
     check_forces,
     fit_surrogate,
@@ -145,3 +147,61 @@ def latency_us(
         "batched": float(np.median(batched) * US_PER_S),
         "single": float(np.median(single) * US_PER_S),
     }
+
+
+def compare_families(
+    families: Sequence[str],
+    forces: object,
+    poses: object,
+    val_forces: object,
+    val_poses: object,
+    *,
+    amplitude: float,
+    folds: int = CV_FOLDS,
+    seed: int = 0,
+    repeats: int = LATENCY_REPEATS,
+) -> dict[str, dict[str, object]]:
+    """Fit, validate, cross-validate and time several families on the same runs.
+
+    Parameters
+    ----------
+    families : sequence of str
+        Names from ``FAMILIES``.
+    forces, poses : array_like, shapes (runs, inputs), (runs, outputs)
+        Training runs.
+    val_forces, val_poses : array_like
+        Held-out runs inside ±amplitude.
+    amplitude : float
+        Validated force range [N] (the training design's half-width).
+    folds, seed : int
+        Of :func:`cross_validate` (and the families' own seeds).
+    repeats : int
+        Of :func:`latency_us`.
+
+    Returns
+    -------
+    dict
+        Family → ``{"surrogate", "validation" (:func:`score`), "cv" (:func:`cross_validate`),
+        "latency_us" (:func:`latency_us`), "fit_s"}``; ``fit_s`` and ``latency_us`` are measured
+        wall-clock times (machine-dependent), every other number is seeded.
+
+    Raises
+    ------
+    ValueError
+        As :func:`~mechlib.surrogates.families.fit_surrogate`, :func:`score` and
+        :func:`cross_validate`.
+    """
+    fams = [check_choice("families", f, FAMILIES) for f in families]
+    out = {}
+    for fam in fams:
+        t0 = time.perf_counter()
+        fit = fit_surrogate(fam, forces, poses, amplitude=amplitude, seed=seed)
+        fit_s = time.perf_counter() - t0
+        out[fam] = {
+            "surrogate": fit,
+            "validation": score(fit, val_forces, val_poses),
+            "cv": cross_validate(fam, forces, poses, amplitude=amplitude, folds=folds, seed=seed),
+            "latency_us": latency_us(fit, val_forces, repeats=repeats),
+            "fit_s": fit_s,
+        }
+    return out
