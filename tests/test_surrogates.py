@@ -58,6 +58,8 @@ def test_gp_interpolates_and_beats_linear_on_a_quadratic() -> None:
     assert np.abs(sg.predict(gp, x) - y).max() / np.abs(y).max() < 1e-3  # near interpolation
     lin = sg.score(sg.fit_surrogate("linear", x, y, amplitude=AMP), xv, yv)["worst_pct"]
     assert sg.score(gp, xv, yv)["worst_pct"] < 0.5 * lin
+    inv = sg.invert(gp, sg.predict(gp, 0.5 * xv[:5]))  # Newton stops at the GP's round-off
+    assert inv["converged"].all() and np.abs(inv["forces"] - 0.5 * xv[:5]).max() < 1e-6
 
 
 def test_scores_are_table5_metrics_and_seeded() -> None:
@@ -172,3 +174,14 @@ def test_bad_inputs_are_refused_with_their_name() -> None:
         inverse.invert(fit, 3 * sg.predict(fit, xv[:1] / np.abs(xv[:1]).max()))
     with pytest.raises(ValueError, match="n_runs must be in"):
         curves.space_filling_design(1, AMP, 0)
+
+
+def test_blas_threads_do_not_change_the_digits() -> None:
+    from threadpoolctl import threadpool_limits
+
+    _, x, y, xv, _ = _data(3, 90)
+    with threadpool_limits(limits=1, user_api="blas"):
+        one = sg.predict(sg.fit_surrogate("cubic", x, y, amplitude=AMP), xv)
+    with threadpool_limits(limits=2, user_api="blas"):
+        two = sg.predict(sg.fit_surrogate("cubic", x, y, amplitude=AMP), xv)
+    np.testing.assert_array_equal(one, two)
