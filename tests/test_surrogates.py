@@ -84,6 +84,11 @@ def test_scores_are_table5_metrics_and_seeded() -> None:
     np.testing.assert_array_equal(both["quadratic"]["cv"]["predicted"], a["predicted"])
     np.testing.assert_array_equal(both["quadratic"]["validation"]["rmse"], s["rmse"])
     assert both["linear"]["validation"]["worst_pct"] > s["worst_pct"]
+    table = sg.summary_table(both, ["x", "y", "z", "tx", "ty", "tz"])
+    assert list(table.index) == ["linear", "quadratic"]
+    assert table.loc["quadratic", "max % tz"] == s["max_range_pct"][5]
+    with pytest.raises(ValueError, match="outputs must name the 6 pose components"):
+        sg.summary_table(both, ["x"])
 
 
 def test_seeded_fits_repeat_exactly() -> None:

@@ -49,7 +49,13 @@ from mechlib.surrogates.families import (
     predict,
 )
 from mechlib.surrogates.inverse import compare_with_truth, invert, jacobian, round_trip_error
-from mechlib.surrogates.scoring import compare_families, cross_validate, latency_us, score
+from mechlib.surrogates.scoring import (
+    compare_families,
+    cross_validate,
+    latency_us,
+    score,
+    summary_table,
+)
 
 __all__ = [
     "FAMILIES",
@@ -68,4 +74,5 @@ __all__ = [
     "round_trip_error",
     "score",
     "space_filling_design",
+    "summary_table",
 ]

@@ -58,8 +58,6 @@ GP_NOISE_BOUNDS = (1e-14, 1e-1)
 """Bounds of the ``gp`` white-noise level (normalised targets)."""
 RANGE_RTOL = 1e-12
 """Relative slack of the validated-range check (round-off of scaled designs)."""
-ORTHONORMAL_LEGENDRE = True
-"""Legendre polynomials scaled to unit variance under the uniform law (√(2k+1) Pₖ)."""
 
 
 @dataclass(frozen=True)
@@ -122,10 +120,10 @@ def _monomials(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
 
 
 def _legendre(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
+    """Products of Legendre polynomials √(2k+1) Pₖ (unit variance for uniform u in [-1, 1])."""
     deg = int(exps.max())
     vander = np.polynomial.legendre.legvander(u, deg)  # (runs, inputs, deg + 1)
-    if ORTHONORMAL_LEGENDRE:
-        vander = vander * np.sqrt(2 * np.arange(deg + 1) + 1)
+    vander = vander * np.sqrt(2 * np.arange(deg + 1) + 1)
     cols = np.take_along_axis(vander, exps.T[None, :, :], axis=2)  # (runs, inputs, terms)
     return np.prod(cols, axis=1)
 

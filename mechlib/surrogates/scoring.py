@@ -205,3 +205,47 @@ def compare_families(
             "fit_s": fit_s,
         }
     return out
+
+
+def summary_table(results: dict[str, dict[str, object]], outputs: Sequence[str]) -> object:
+    """One row per family of a :func:`compare_families` result, for a notebook table.
+
+    Parameters
+    ----------
+    results : dict
+        From :func:`compare_families`.
+    outputs : sequence of str
+        Names of the pose components, e.g. ``["x", "y", "z", "θx", "θy", "θz"]``.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index the families; columns ``max % <output>`` (validation, Table 5's convention),
+        ``rmse <output>``, ``worst %``, ``CV worst %``, ``fit s``, ``µs/pose batched``,
+        ``µs/pose single``.
+
+    Raises
+    ------
+    ValueError
+        If ``outputs`` does not name every pose component.
+    """
+    import pandas as pd
+
+    rows = {}
+    for fam, r in results.items():
+        val = r["validation"]
+        if len(outputs) != len(val["rmse"]):
+            raise ValueError(
+                f"outputs must name the {len(val['rmse'])} pose components, got {list(outputs)}"
+            )
+        row = {f"max % {o}": float(v) for o, v in zip(outputs, val["max_range_pct"], strict=True)}
+        row |= {f"rmse {o}": float(v) for o, v in zip(outputs, val["rmse"], strict=True)}
+        row |= {
+            "worst %": val["worst_pct"],
+            "CV worst %": r["cv"]["worst_pct"],
+            "fit s": r["fit_s"],
+            "µs/pose batched": r["latency_us"]["batched"],
+            "µs/pose single": r["latency_us"]["single"],
+        }
+        rows[fam] = row
+    return pd.DataFrame.from_dict(rows, orient="index")
