@@ -88,7 +88,18 @@ def n_terms(family: str, n_inputs: int) -> int:
 
     For the polynomial families this is the number of coefficients per output (``linear`` k,
     ``quadratic`` 1 + 2k + k(k−1)/2, ``cubic`` C(k+3, 3)); ``gp`` needs its linear trend (k + 1)
-    and ``pce`` its k-fold LARS (one run per fold more than the folds).
+    and ``pce`` its k-fold LARS (two runs per fold).
+
+    Parameters
+    ----------
+    family : str
+        One of ``FAMILIES``.
+    n_inputs : int
+        Number of forces, ≥ 1.
+
+    Returns
+    -------
+    int
 
     Raises
     ------
@@ -238,6 +249,18 @@ def fit_surrogate(
 def check_forces(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) -> np.ndarray:
     """Return ``forces`` as a (runs, inputs) array inside the surrogate's validated range.
 
+    Parameters
+    ----------
+    surrogate : Surrogate
+    forces : array_like, shape (runs, inputs)
+        Forces [N].
+    extrapolate : bool
+        Accept forces outside ±amplitude.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, inputs)
+
     Raises
     ------
     ValueError
@@ -256,7 +279,21 @@ def check_forces(surrogate: Surrogate, forces: object, *, extrapolate: bool = Fa
 
 
 def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
-    """Predictions for an already checked (runs, inputs) float array (no range check)."""
+    """Predictions for an already checked (runs, inputs) float array (no range check).
+
+    The fast path of :func:`predict`, for latency measurements and Newton iterations; call it
+    inside ``threadpool_limits(limits=1, user_api="blas")`` for thread-independent digits.
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+    x : numpy.ndarray, shape (runs, inputs)
+        Forces [N], as :func:`check_forces` returns them.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+    """
     s = surrogate.state
     u = x / surrogate.amplitude
     if surrogate.family == "linear":

@@ -29,8 +29,27 @@ FD_STEP = 1e-5
 
 
 def jacobian(surrogate: Surrogate, forces: np.ndarray) -> np.ndarray:
-    """Jacobians (runs, outputs, inputs) of the meta-model at forces (runs, inputs), by central
-    differences of step ``FD_STEP`` × validated range (exact for polynomials up to degree 2)."""
+    """Jacobians of the meta-model by central differences of step ``FD_STEP`` × validated range.
+
+    Exact (to round-off) for polynomials up to degree 2; one batched prediction of 2k points
+    per run.
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+    forces : array_like, shape (runs, inputs)
+        Where to differentiate [N]; may lie up to one step outside the validated range.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs, inputs)
+        ∂pose/∂force (pose units per N).
+
+    Raises
+    ------
+    ValueError
+        Wrong shape.
+    """
     x = check_matrix("forces", forces, shape=(None, surrogate.n_inputs))
     k = surrogate.n_inputs
     h = FD_STEP * surrogate.amplitude
