@@ -1,0 +1,337 @@
+"""Named force → pose meta-model families: fit, predict, size rules.
+
+A fitted meta-model is a :class:`Surrogate`: the family's name, the validated force range (the
+half-width of the training box, N) and the family's fitted state. ``predict`` refuses forces
+outside the validated range unless told to extrapolate.
+
+Families
+--------
+``linear``
+    ``S_T`` of Eq 7 (least squares, no intercept): :func:`mechlib.metamodel.fit_linear`.
+``quadratic``
+    Eq 6, second order with interactions and intercept: :func:`mechlib.metamodel.fit_quadratic`.
+``cubic``
+    Every monomial of total degree ≤ 3 (84 terms for six forces), least squares on the forces
+    divided by the validated range.
+``gp``
+    Gaussian process (Kriging) per output from scikit-learn on the residual of a linear trend
+    (regression Kriging): see :mod:`mechlib.surrogates` for the measurement behind the choice.
+``pce``
+    Sparse polynomial chaos: a Legendre basis (orthonormal for uniform forces on the validated
+    range, :mod:`numpy.polynomial.legendre`) of total degree ≤ ``PCE_DEGREE``; per output,
+    scikit-learn's ``LassoLarsCV`` (least-angle regression stopped by seeded k-fold
+    cross-validation) selects the terms — those that entered its path up to the chosen
+    penalty — and least squares fits them (hybrid LARS, as OpenTURNS's
+    ``LeastSquaresMetaModelSelection``), unless they are as many as the runs (then LARS's own
+    coefficients are kept). Degree 4 or 5 was measured worse below 300 runs.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from mechlib import metamodel
+from mechlib.params import check_choice, check_float, check_int, check_matrix
+
+FAMILIES = ("linear", "quadratic", "cubic", "gp", "pce")
+"""Names accepted by :func:`fit_surrogate`."""
+CUBIC_DEGREE = 3
+"""Total degree of the ``cubic`` family."""
+PCE_DEGREE = 3
+"""Largest total degree of the ``pce`` basis (its LARS path selects among these terms)."""
+PCE_CV_FOLDS = 5
+"""Folds of the cross-validation that stops the LARS path of each ``pce`` output."""
+PCE_MAX_ITER = 500
+"""Largest number of LARS steps per ``pce`` output (more than the 84 basis terms of degree 3)."""
+GP_RESTARTS = 2
+"""Seeded restarts of scikit-learn's hyper-parameter optimiser per ``gp`` output."""
+GP_LENGTH_BOUNDS = (1e-2, 1e3)
+"""Bounds of the ``gp`` RBF length scales, in units of the validated range."""
+GP_NOISE = 1e-8
+"""Initial white-noise level of the ``gp`` kernel (normalised targets: FE data are noise-free)."""
+GP_NOISE_BOUNDS = (1e-14, 1e-1)
+"""Bounds of the ``gp`` white-noise level (normalised targets)."""
+RANGE_RTOL = 1e-12
+"""Relative slack of the validated-range check (round-off of scaled designs)."""
+
+
+@dataclass(frozen=True)
+class Surrogate:
+    """A fitted meta-model.
+
+    Attributes
+    ----------
+    family : str
+        One of ``FAMILIES``.
+    amplitude : float
+        Validated force range [N]: the training design's half-width; inputs are in ±amplitude.
+    n_inputs, n_outputs : int
+        Number of forces and of pose components.
+    state : object
+        The family's fitted state (coefficients or the library's models).
+    """
+
+    family: str
+    amplitude: float
+    n_inputs: int
+    n_outputs: int
+    state: object
+
+
+def n_terms(family: str, n_inputs: int) -> int:
+    """Smallest number of training runs a family accepts for ``n_inputs`` forces.
+
+    For the polynomial families this is the number of coefficients per output (``linear`` k,
+    ``quadratic`` 1 + 2k + k(k−1)/2, ``cubic`` C(k+3, 3)); ``gp`` needs its linear trend (k + 1)
+    and ``pce`` its k-fold LARS (two runs per fold).
+
+    Parameters
+    ----------
+    family : str
+        One of ``FAMILIES``.
+    n_inputs : int
+        Number of forces, ≥ 1.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        Unknown family or ``n_inputs`` < 1.
+    """
+    check_choice("family", family, FAMILIES)
+    k = check_int("n_inputs", n_inputs, low=1)
+    return {
+        "linear": k,
+        "quadratic": 1 + 2 * k + k * (k - 1) // 2,
+        "cubic": math.comb(k + CUBIC_DEGREE, CUBIC_DEGREE),
+        "gp": k + 1,
+        "pce": 2 * PCE_CV_FOLDS,
+    }[family]
+
+
+def _exponents(n_inputs: int, degree: int) -> np.ndarray:
+    """Exponents (terms, inputs) of every monomial of total degree ≤ ``degree``, graded order."""
+    rows = [np.zeros(n_inputs, dtype=int)]
+    for d in range(1, degree + 1):
+        for combo in itertools.combinations_with_replacement(range(n_inputs), d):
+            rows.append(np.bincount(combo, minlength=n_inputs))
+    return np.array(rows)
+
+
+def _monomials(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
+    return np.prod(u[:, None, :] ** exps[None, :, :], axis=2)
+
+
+def _legendre(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
+    """Products of Legendre polynomials √(2k+1) Pₖ (unit variance for uniform u in [-1, 1])."""
+    deg = int(exps.max())
+    vander = np.polynomial.legendre.legvander(u, deg)  # (runs, inputs, deg + 1)
+    vander = vander * np.sqrt(2 * np.arange(deg + 1) + 1)
+    cols = np.take_along_axis(vander, exps.T[None, :, :], axis=2)  # (runs, inputs, terms)
+    return np.prod(cols, axis=1)
+
+
+def _fit_gp(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+
+    trend = metamodel.fit_linear(u, y, intercept=True)
+    models = []
+    for j in range(y.shape[1]):
+        kernel = ConstantKernel(1.0) * RBF(np.ones(u.shape[1]), GP_LENGTH_BOUNDS) + WhiteKernel(
+            GP_NOISE, GP_NOISE_BOUNDS
+        )
+        gp = GaussianProcessRegressor(
+            kernel, normalize_y=True, n_restarts_optimizer=GP_RESTARTS, random_state=seed
+        )
+        with warnings.catch_warnings():  # optimum on a bound (no noise, a linear direction)
+            warnings.filterwarnings("ignore", category=ConvergenceWarning)
+            models.append(gp.fit(u, trend["residuals"][:, j]))
+    return {"S": trend["S"], "b0": trend["b0"], "models": models}
+
+
+def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.linear_model import LassoLarsCV
+    from sklearn.model_selection import KFold
+
+    exps = _exponents(u.shape[1], PCE_DEGREE)
+    a = _legendre(u, exps)
+    folds = KFold(PCE_CV_FOLDS, shuffle=True, random_state=seed)
+    coef = np.zeros((len(exps), y.shape[1]))
+    for j in range(y.shape[1]):
+        scale = float(np.std(y[:, j])) or 1.0
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", category=ConvergenceWarning)
+            model = LassoLarsCV(fit_intercept=False, cv=folds, max_iter=PCE_MAX_ITER).fit(
+                a, y[:, j] / scale
+            )
+        # the terms that entered the LARS path up to the chosen penalty; least squares fits them
+        keep = np.flatnonzero(np.any(model.coef_path_ != 0, axis=1))
+        if keep.size < len(u):
+            coef[keep, j], *_ = np.linalg.lstsq(a[:, keep], y[:, j], rcond=None)
+        else:  # as many terms as runs: least squares would interpolate; keep LARS's shrinkage
+            coef[:, j] = model.coef_ * scale
+    return {"exponents": exps, "coef": coef}
+
+
+def fit_surrogate(
+    family: str,
+    forces: object,
+    poses: object,
+    *,
+    amplitude: float,
+    seed: int = 0,
+) -> Surrogate:
+    """Fit a named meta-model family to training runs.
+
+    Parameters
+    ----------
+    family : str
+        One of ``FAMILIES``.
+    forces : array_like, shape (runs, inputs)
+        Training forces [N].
+    poses : array_like, shape (runs, outputs)
+        Training poses (µm, µrad).
+    amplitude : float
+        Validated force range [N]: the training design's half-width (at least max |forces|);
+        predictions are refused outside ±amplitude.
+    seed : int
+        Seed of the ``gp`` optimiser restarts and of the ``pce`` cross-validation folds.
+
+    Returns
+    -------
+    Surrogate
+
+    Raises
+    ------
+    ValueError
+        Unknown family (the allowed ones are listed), mismatched shapes, fewer runs than the
+        family's :func:`n_terms`, an amplitude below max |forces|.
+    """
+    check_choice("family", family, FAMILIES)
+    x = check_matrix("forces", forces)
+    y = check_matrix("poses", poses, shape=(x.shape[0], None))
+    seed = check_int("seed", seed, low=0)
+    need = n_terms(family, x.shape[1])
+    if len(x) < need:
+        raise ValueError(
+            f"the {family} family needs at least {need} training runs (its number of terms for "
+            f"{x.shape[1]} forces), got {len(x)}"
+        )
+    top = float(np.abs(x).max())
+    amplitude = check_float("amplitude", amplitude, low=0.0, low_open=True)
+    if top > amplitude * (1 + RANGE_RTOL):
+        raise ValueError(f"amplitude must be >= max |forces| = {top} N, got {amplitude}")
+    u = x / amplitude
+    with threadpool_limits(limits=1, user_api="blas"):  # same digits with any BLAS threads
+        if family == "linear":
+            state = {"S": metamodel.fit_linear(x, y)["S"]}
+        elif family == "quadratic":
+            state = {"coef": metamodel.fit_quadratic(x, y)["coef"]}
+        elif family == "cubic":
+            exps = _exponents(x.shape[1], CUBIC_DEGREE)
+            coef, *_ = np.linalg.lstsq(_monomials(u, exps), y, rcond=None)
+            state = {"exponents": exps, "coef": coef}
+        elif family == "gp":
+            state = _fit_gp(u, y, seed)
+        else:
+            state = _fit_pce(u, y, seed)
+    return Surrogate(family, amplitude, x.shape[1], y.shape[1], state)
+
+
+def check_forces(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) -> np.ndarray:
+    """Return ``forces`` as a (runs, inputs) array inside the surrogate's validated range.
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+    forces : array_like, shape (runs, inputs)
+        Forces [N].
+    extrapolate : bool
+        Accept forces outside ±amplitude.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, inputs)
+
+    Raises
+    ------
+    ValueError
+        Wrong number of columns, or (unless ``extrapolate``) a force outside ±amplitude.
+    """
+    x = check_matrix("forces", forces, shape=(None, surrogate.n_inputs))
+    if not extrapolate and x.size:
+        top = float(np.abs(x).max())
+        if top > surrogate.amplitude * (1 + RANGE_RTOL):
+            raise ValueError(
+                f"forces must be within the validated range [-{surrogate.amplitude}, "
+                f"{surrogate.amplitude}] N of this {surrogate.family} meta-model, got a force of "
+                f"{top} N in absolute value"
+            )
+    return x
+
+
+def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
+    """Predictions for an already checked (runs, inputs) float array (no range check).
+
+    The fast path of :func:`predict`, for latency measurements and Newton iterations; call it
+    inside ``threadpool_limits(limits=1, user_api="blas")`` for thread-independent digits.
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+    x : numpy.ndarray, shape (runs, inputs)
+        Forces [N], as :func:`check_forces` returns them.
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+    """
+    s = surrogate.state
+    u = x / surrogate.amplitude
+    if surrogate.family == "linear":
+        return x @ s["S"].T
+    if surrogate.family == "quadratic":
+        return metamodel.quadratic_features(x)[0] @ s["coef"]
+    if surrogate.family == "cubic":
+        return _monomials(u, s["exponents"]) @ s["coef"]
+    if surrogate.family == "gp":
+        gp = np.column_stack([m.predict(u) for m in s["models"]])
+        return s["b0"] + u @ s["S"].T + gp
+    return _legendre(u, s["exponents"]) @ s["coef"]
+
+
+def predict(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) -> np.ndarray:
+    """Poses (runs, outputs) a meta-model predicts for forces (runs, inputs) [N].
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+        From :func:`fit_surrogate`.
+    forces : array_like, shape (runs, inputs)
+    extrapolate : bool
+        Allow forces outside the validated range (default: refuse them).
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+
+    Raises
+    ------
+    ValueError
+        Wrong shape, or a force outside the validated range (see :func:`check_forces`).
+    """
+    x = check_forces(surrogate, forces, extrapolate=extrapolate)
+    with threadpool_limits(limits=1, user_api="blas"):
+        return predict_array(surrogate, x)
