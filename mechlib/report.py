@@ -148,6 +148,7 @@ def claim_row(
     *,
     source: str = cat.SOURCE_THESIS,
     mixed: bool = False,
+    basis: str = cat.BASIS_INDEPENDENT,
 ) -> dict[str, Any]:
     """A row for a statement checked by a computed test (``holds``).
 
@@ -162,18 +163,29 @@ def claim_row(
         never counted with the thesis's claims.
     mixed : bool
         The statement has several parts (``holds`` one per part) and some holding is
-        :data:`~mechlib.categories.CAT_MIXED` rather than "not supported".
+        "thesis claim mixed" rather than "not supported".
+    basis : {"independent", "construction"}
+        ``"construction"``: the statement holds by construction on our model (e.g. second-order
+        terms vanishing on a linear model), so holding is "consistent by construction", not
+        support of the thesis's claim.
 
     Raises
     ------
     ValueError
-        For an unknown ``source``.
+        For an unknown ``source`` or ``basis``.
     """
-    cat.check_kinds(cat.BASIS_INDEPENDENT, source)
+    cat.check_kinds(basis, source)
+    if basis == cat.BASIS_THESIS:
+        raise ValueError(
+            f"{artefact}: basis of a claim must be {cat.BASIS_INDEPENDENT!r} or "
+            f"{cat.BASIS_CONSTRUCTION!r}, got {basis!r}"
+        )
     parts = np.atleast_1d(np.asarray(holds, dtype=bool))
     n_hold = int(parts.sum())
     if n_hold == parts.size:
         verdict, category = SUPPORTED, cat.CAT_SUPPORTED
+        if basis == cat.BASIS_CONSTRUCTION:
+            category = cat.CAT_CONSTRUCTION
     elif mixed and n_hold:
         verdict = f"{NOT_SUPPORTED} (mixed: {n_hold} of {parts.size} parts hold)"
         category = cat.CAT_MIXED
@@ -188,6 +200,7 @@ def claim_row(
         "verdict": verdict,
         "category": cat.CAT_OURS if source == cat.SOURCE_OURS else category,
         "source": source,
+        "basis": basis,
         "n_values": int(parts.size),
         "n_agree": n_hold,
         "difference_text": "—",
@@ -306,6 +319,7 @@ class Claim:
     evidence: str
     source: str = cat.SOURCE_THESIS
     mixed: bool = False
+    basis: str = cat.BASIS_INDEPENDENT
 
     def row(self, holds: object) -> dict[str, Any]:
         """The row for ``holds``: a bool, or booleans that must all be true (some, if ``mixed``:
@@ -321,7 +335,13 @@ class Claim:
         if arr.dtype != bool:
             raise TypeError(f"{self.artefact}: a claim holds or not, got {holds!r}")
         return claim_row(
-            self.artefact, self.claim, self.evidence, arr, source=self.source, mixed=self.mixed
+            self.artefact,
+            self.claim,
+            self.evidence,
+            arr,
+            source=self.source,
+            mixed=self.mixed,
+            basis=self.basis,
         )
 
 

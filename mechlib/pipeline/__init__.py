@@ -1,0 +1,1 @@
+"""The build wing: turns executed notebooks and the book sources into the HTML and PDF book."""
