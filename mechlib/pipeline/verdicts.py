@@ -121,14 +121,11 @@ def row_category(fields: Mapping[str, Any]) -> str:
     raise ValueError(f"unknown verdict {verdict!r} in a row without a category")
 
 
-def load_rows(records: Mapping[str, Mapping[str, Any]] | Path) -> list[ReportRow]:
-    """Every report row of a folder of records (``<notebook>.json``) or of loaded records.
+Records = Mapping[str, Mapping[str, Any]]
 
-    Parameters
-    ----------
-    records : mapping or Path
-        ``{notebook: record}`` (a record as :class:`mechlib.records.Recorder` saves it) or a
-        folder holding the record files.
+
+def load_records(records: Records | Path) -> dict[str, Mapping[str, Any]]:
+    """``{notebook: record}`` from a folder of record files (``<notebook>.json``), or as given.
 
     Raises
     ------
@@ -139,10 +136,22 @@ def load_rows(records: Mapping[str, Mapping[str, Any]] | Path) -> list[ReportRow
         paths = sorted(Path(records).glob("*.json"))
         if not paths:
             raise FileNotFoundError(f"records: no <notebook>.json in {records}")
-        records = {p.stem: json.loads(p.read_text()) for p in paths}
+        return {p.stem: json.loads(p.read_text()) for p in paths}
+    return dict(records)
+
+
+def load_rows(records: Records | Path) -> list[ReportRow]:
+    """Every report row of a folder of records or of loaded records (see :func:`load_records`).
+
+    Parameters
+    ----------
+    records : mapping or Path
+        ``{notebook: record}`` (a record as :class:`mechlib.records.Recorder` saves it) or a
+        folder holding the record files.
+    """
     return [
         ReportRow(rec.get("notebook", name), dict(row))
-        for name, rec in sorted(records.items())
+        for name, rec in sorted(load_records(records).items())
         for row in rec.get("report", [])
     ]
 
