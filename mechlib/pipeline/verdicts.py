@@ -96,6 +96,11 @@ class ReportRow:
         return row_category(self.fields)
 
     @property
+    def holds(self) -> bool:
+        """Whether the row's values all agree or its claim holds (see :func:`row_holds`)."""
+        return row_holds(self.fields)
+
+    @property
     def artefacts(self) -> list[artefacts.Artefact]:
         """The thesis artefacts the row names, e.g. ``[("table", 6), ("table", 8)]``."""
         return artefacts.parse(self.fields["artefact"])
@@ -122,6 +127,14 @@ def row_category(fields: Mapping[str, Any]) -> str:
 
 
 Records = Mapping[str, Mapping[str, Any]]
+
+
+def row_holds(fields: Mapping[str, Any]) -> bool:
+    """Whether all of a row's values agree (a comparison) or its claim holds: from its counts
+    (``n_agree`` of ``n_values``), or for a row recorded before them, from its verdict group."""
+    if "n_values" in fields and "n_agree" in fields:
+        return fields["n_agree"] == fields["n_values"]
+    return fields["verdict"].startswith((report.REPRODUCED, report.WITHIN, report.SUPPORTED))
 
 
 def load_records(records: Records | Path) -> dict[str, Mapping[str, Any]]:
