@@ -27,6 +27,9 @@ DIVERGES = "diverges"
 SUPPORTED = "claim supported"
 NOT_SUPPORTED = "claim not supported"
 COMPUTED = "computed (no published value)"
+#: the tolerance of a row whose values agree to the printed digits, and of an exact one
+PRINTED_DIGIT = "half a unit of the last printed digit"
+EXACT = "exact (floating-point round-off only)"
 
 
 def compare_row(
@@ -80,9 +83,10 @@ def compare_row(
     dict
         A row with the published and our values (listed, or summarised when long), the largest
         absolute and relative difference, the verdict (text), and the structured fields
-        ``category``, ``basis``, ``source``, ``cause``, ``n_values``, ``n_agree`` (values within
-        the tolerance), ``difference`` (max |ours − published| / max |published|),
-        ``difference_text`` and ``tolerance_used`` (the largest difference over the allowed one).
+        ``category``, ``basis``, ``source``, ``cause``, ``tolerance`` (the one the agreement
+        met, in words), ``n_values``, ``n_agree`` (values within the tolerance),
+        ``difference`` (max |ours − published| / max |published|), ``difference_text`` and
+        ``tolerance_used`` (the largest difference over the allowed one).
 
     Raises
     ------
@@ -106,10 +110,12 @@ def compare_row(
     slack = 1e-9 * np.maximum(np.abs(pub), 1.0)
     allowed = res + rtol * np.abs(pub) + abs_tol + slack
     agree = diff <= allowed
+    tolerance = tolerance or f"{100 * rtol:g} %"
     if np.all(diff <= res + slack):
         verdict = REPRODUCED
+        tolerance = PRINTED_DIGIT if np.any(res > 0) else EXACT
     elif np.all(agree):
-        verdict = f"{WITHIN} ({tolerance or f'{100 * rtol:g} %'})"
+        verdict = f"{WITHIN} ({tolerance})"
     else:
         if not cause:
             raise ValueError(f"{artefact} {quantity}: values diverge, a cause must be given")
@@ -129,6 +135,7 @@ def compare_row(
         "basis": basis,
         "source": source,
         "cause": "" if np.all(agree) else cause,
+        "tolerance": tolerance,
         "n_values": int(pub.size),
         "n_agree": int(agree.sum()),
         "difference": float(diff.max() / scale) if scale > 0 else None,

@@ -122,3 +122,28 @@ def test_category_lists_are_consistent() -> None:
     assert set(cat.CLAIM_CATEGORIES) < set(cat.CATEGORIES)
     assert cat.CAT_OURS not in cat.CLAIM_CATEGORIES
     assert len(set(cat.CATEGORIES)) == len(cat.CATEGORIES)
+
+
+def test_report_cells_give_category_tolerance_or_cause_and_a_bounded_difference() -> None:
+    from mechlib.pipeline import verdicts
+
+    agree = report.compare_row("Table 3", "q", [0.17], [0.166667], resolution=0.005)
+    cells = verdicts.report_cells(agree)
+    assert cells["verdict"] == "reproduced: within half a unit of the last printed digit"
+    assert cells["difference"].startswith("1.96 % of max |published|")
+    fitted = report.compare_row("Eq 8", "x", [57.53], [57.6], rtol=0.01, tolerance="1 %: fit_tol",
+                                basis="construction")  # fmt: skip
+    assert (
+        verdicts.report_cells(fitted)["verdict"]
+        == "consistent by construction: within 1 %: fit_tol"
+    )
+    off = report.compare_row(
+        "Table 3", "ν", [19.63], [28763.8], cause="x repeats θx", basis="thesis-inconsistency"
+    )
+    assert verdicts.report_cells(off)["verdict"] == "inconsistency inside the thesis: x repeats θx"
+    legacy = {"published": "1, 2", "ours": "1, 3", "max_abs_diff": 1.0, "max_rel_diff": 2.9e6,
+              "verdict": "diverges: c"}  # fmt: skip
+    assert verdicts.report_cells(legacy)["difference"] == "1"
+    claim = verdicts.report_cells(report.claim_row("Eq 6", "c", "ratio 2e-8", True))
+    assert claim == {"published": "(claim)", "ours": "ratio 2e-8", "difference": "—",
+                     "verdict": "thesis claim supported"}  # fmt: skip

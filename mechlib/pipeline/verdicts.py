@@ -253,3 +253,26 @@ def missing_artefacts(rows: Sequence[ReportRow]) -> list[str]:
     """The thesis artefacts that no report row names (empty when every one has a row)."""
     named = {a for row in rows for a in row.artefacts}
     return [artefact_name(k, n) for k, n, _, _ in THESIS_ARTEFACTS if (k, n) not in named]
+
+
+def report_cells(fields: Mapping[str, Any]) -> dict[str, str]:
+    """The Published, Ours, Difference and Verdict cells of a report row, as plain text.
+
+    The Verdict cell is the row's category, then its cause (a divergence) or the tolerance its
+    agreement met; the Difference cell is :func:`mechlib.categories.difference_text`'s (a row
+    recorded before it existed shows its largest absolute difference, never a relative one).
+    """
+    category = row_category(fields)
+    detail = fields.get("cause") or ""
+    if not detail and fields.get("tolerance") and row_holds(fields):
+        detail = f"within {fields['tolerance']}"
+    difference = fields.get("difference_text")
+    if difference is None:
+        diff = fields.get("max_abs_diff")
+        difference = "—" if diff is None else f"{diff:.{cat.DIFF_DIGITS}g}"
+    return {
+        "published": str(fields["published"]),
+        "ours": str(fields["ours"]),
+        "difference": difference,
+        "verdict": f"{category}: {detail}" if detail else category,
+    }
