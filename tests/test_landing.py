@@ -188,7 +188,8 @@ def test_rollup_counts_each_named_artefact_and_summarises_values() -> None:
         "Table 3: 1 row reproduced (36/36 values agree); "
         "1 row inconsistency inside the thesis (1/2 values agree)"
     )
-    assert by_name["Table 3"]["verdict"] == "reproduced · inconsistency inside the thesis"
+    assert by_name["Table 3"]["verdict"] == "inconsistency inside the thesis"
+    assert by_name["Table 3"]["counts"] == {"reproduced": 1, "inconsistency inside the thesis": 1}
     assert by_name["Table 6"]["rows"] == by_name["Table 8"]["rows"] == 1
     assert by_name["Fig 1"]["verdict"] == verdicts.NO_ROW
     assert "Fig 1: no report row" in pagecheck.artefact_problems(rows)
@@ -210,3 +211,7 @@ def test_legacy_rows_map_their_verdict_and_unknown_ones_are_refused() -> None:
     with pytest.raises(ValueError, match="unknown category"):
         verdicts.row_category({"verdict": "reproduced", "category": "fine"})
     assert json.loads(json.dumps(verdicts.rollup(verdicts.load_rows(REFERENCES))))
+
+
+def test_headline_order_ranks_every_category_once() -> None:
+    assert sorted(verdicts.HEADLINE_ORDER) == sorted(cat.CATEGORIES)

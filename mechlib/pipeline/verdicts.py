@@ -53,6 +53,20 @@ THESIS_ARTEFACTS: tuple[tuple[str, int, int, str], ...] = (
     ("table", 7, 3, "Identification results (nominal and real parameters)"),
     ("table", 8, 3, "5R computational and measurement costs"),
 )
+#: The verdict an artefact shows when its rows have several: what a reader must know first
+#: (a published value not reached, then a divergence, …); its other verdicts are in its summary.
+HEADLINE_ORDER = (
+    cat.CAT_NOT_REPRODUCED,
+    cat.CAT_DIVERGES,
+    cat.CAT_INCONSISTENT,
+    cat.CAT_NOT_SUPPORTED,
+    cat.CAT_MIXED,
+    cat.CAT_REPRODUCED,
+    cat.CAT_SUPPORTED,
+    cat.CAT_CONSTRUCTION,
+    cat.CAT_OURS,
+    cat.CAT_COMPUTED,
+)
 #: What the landing table shows for an artefact that no report row covers.
 NO_ROW = "no row"
 #: How the counts are grouped: the thesis's published values, its claims, and ours.
@@ -219,8 +233,8 @@ def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
     list of dict
         ``artefact`` ("Table 3"), ``chapter``, ``title``, ``pages`` (notebooks whose rows it
         has), ``rows`` (their number), ``counts`` ({category: rows}, only those present),
-        ``verdict`` (the categories present, " · "-separated, or :data:`NO_ROW`) and ``summary``
-        (one line: rows and values agreeing per category).
+        ``verdict`` (the first category present in :data:`HEADLINE_ORDER`, or :data:`NO_ROW`)
+        and ``summary`` (one line: rows and values agreeing per category).
     """
     known = [(k, n) for k, n, _, _ in THESIS_ARTEFACTS]
     named = {a for row in rows for a in row.artefacts}
@@ -242,7 +256,7 @@ def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
                 "pages": sorted({r.page for r in mine}),
                 "rows": len(mine),
                 "counts": {c: len(rs) for c, rs in present.items()},
-                "verdict": " · ".join(present) if present else NO_ROW,
+                "verdict": next((c for c in HEADLINE_ORDER if c in present), NO_ROW),
                 "summary": f"{name}: {summary}" if summary else f"{name}: {NO_ROW}",
             }
         )
