@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from mechlib import categories as cat
 from mechlib.params import check_float, check_int
 
 REPRODUCED = "reproduced"
@@ -26,12 +27,9 @@ DIVERGES = "diverges"
 SUPPORTED = "claim supported"
 NOT_SUPPORTED = "claim not supported"
 COMPUTED = "computed (no published value)"
-
-
-def _fmt(values: np.ndarray, digits: int = 6) -> str:
-    flat = values.ravel()
-    text = ", ".join(f"{v:.{digits}g}" for v in flat[:6])
-    return text + (f", … ({flat.size} values)" if flat.size > 6 else "")
+#: the tolerance of a row whose values agree to the printed digits, and of an exact one
+PRINTED_DIGIT = "half a unit of the last printed digit"
+EXACT = "exact (floating-point round-off only)"
 
 
 def compare_row(
@@ -45,6 +43,8 @@ def compare_row(
     atol: object = 0.0,
     tolerance: str = "",
     cause: str = "",
+    basis: str = cat.BASIS_INDEPENDENT,
+    source: str = cat.SOURCE_THESIS,
 ) -> dict[str, Any]:
     """Compare our value(s) with the published ones and classify the agreement.
 
@@ -68,13 +68,33 @@ def compare_row(
         How the tolerance reads in the verdict; default ``"<rtol> %"``.
     cause : str
         Why the values diverge, shown when they do. Required in that case.
+    basis : {"independent", "construction", "thesis-inconsistency"}
+        What an agreement rests on. ``"construction"``: we fitted to the published value or
+        computed ours from an input taken from it, so agreement is "consistent by
+        construction", not a reproduction. ``"thesis-inconsistency"``: the comparison sets
+        published values against each other, so a divergence is an "inconsistency inside the
+        thesis" (categories: :mod:`mechlib.categories`).
+    source : {"thesis", "ours"}
+        ``"ours"``: the row tests a hypothesis of ours ("our finding beyond the thesis", never
+        counted with the thesis's values).
 
     Returns
     -------
     dict
-        A row with the published and our values (shortened), the largest absolute and relative
-        difference and the verdict.
+        A row with the published and our values (listed, or summarised when long), the largest
+        absolute and relative difference, the verdict (text), and the structured fields
+        ``category``, ``basis``, ``source``, ``cause``, ``tolerance`` (the one the agreement
+        met, in words), ``n_values``, ``n_agree`` (values within the tolerance),
+        ``difference`` (max |ours − published| / max |published|), ``difference_text`` and
+        ``tolerance_used`` (the largest difference over the allowed one).
+
+    Raises
+    ------
+    ValueError
+        For different shapes, negative tolerances, an unknown ``basis`` or ``source``, or
+        diverging values without a ``cause``.
     """
+    cat.check_kinds(basis, source)
     pub = np.asarray(published, dtype=float)
     our = np.asarray(ours, dtype=float)
     if pub.shape != our.shape:
@@ -88,35 +108,109 @@ def compare_row(
     rel = np.divide(diff, np.abs(pub), out=np.zeros_like(diff), where=pub != 0)
     # a tiny allowance for binary floating point on top of the printed half-digit
     slack = 1e-9 * np.maximum(np.abs(pub), 1.0)
+    allowed = res + rtol * np.abs(pub) + abs_tol + slack
+    agree = diff <= allowed
+    tolerance = tolerance or f"{100 * rtol:g} %"
     if np.all(diff <= res + slack):
         verdict = REPRODUCED
-    elif np.all(diff <= res + rtol * np.abs(pub) + abs_tol + slack):
-        verdict = f"{WITHIN} ({tolerance or f'{100 * rtol:g} %'})"
+        tolerance = PRINTED_DIGIT if np.any(res > 0) else EXACT
+    elif np.all(agree):
+        verdict = f"{WITHIN} ({tolerance})"
     else:
         if not cause:
             raise ValueError(f"{artefact} {quantity}: values diverge, a cause must be given")
         verdict = f"{DIVERGES}: {cause}"
+    scale = float(np.abs(pub).max()) if pub.size else 0.0
+    printed = res > 0
+    res_ratio = float((diff[printed] / res[printed]).max()) if np.any(printed) else None
     return {
         "artefact": artefact,
         "quantity": quantity,
-        "published": _fmt(pub),
-        "ours": _fmt(our),
+        "published": cat.summarise(pub),
+        "ours": cat.summarise(our),
         "max_abs_diff": float(diff.max()),
         "max_rel_diff": float(rel.max()),
         "verdict": verdict,
+        "category": cat.comparison_category(bool(np.all(agree)), basis, source),
+        "basis": basis,
+        "source": source,
+        "cause": "" if np.all(agree) else cause,
+        "tolerance": tolerance,
+        "n_values": int(pub.size),
+        "n_agree": int(agree.sum()),
+        "difference": float(diff.max() / scale) if scale > 0 else None,
+        "difference_text": cat.difference_text(float(diff.max()), scale, res_ratio),
+        "tolerance_used": float((diff / allowed).max()),
     }
 
 
-def claim_row(artefact: str, claim: str, evidence: str, holds: bool) -> dict[str, Any]:
-    """A row for a statement of the thesis checked by a computed test (``holds``)."""
+_NO_DIFFERENCE = {"max_abs_diff": None, "max_rel_diff": None, "difference": None}
+
+
+def claim_row(
+    artefact: str,
+    claim: str,
+    evidence: str,
+    holds: object,
+    *,
+    source: str = cat.SOURCE_THESIS,
+    mixed: bool = False,
+    basis: str = cat.BASIS_INDEPENDENT,
+) -> dict[str, Any]:
+    """A row for a statement checked by a computed test (``holds``).
+
+    Parameters
+    ----------
+    artefact, claim, evidence : str
+        The artefact, the statement and what the test found (shown as written).
+    holds : bool or array of bool
+        Whether the statement holds; several parts must all hold, unless ``mixed``.
+    source : {"thesis", "ours"}
+        Whose statement it is; ``"ours"`` makes the row "our finding beyond the thesis",
+        never counted with the thesis's claims.
+    mixed : bool
+        The statement has several parts (``holds`` one per part) and some holding is
+        "thesis claim mixed" rather than "not supported".
+    basis : {"independent", "construction"}
+        ``"construction"``: the statement holds by construction on our model (e.g. second-order
+        terms vanishing on a linear model), so holding is "consistent by construction", not
+        support of the thesis's claim.
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``source`` or ``basis``.
+    """
+    cat.check_kinds(basis, source)
+    if basis == cat.BASIS_THESIS:
+        raise ValueError(
+            f"{artefact}: basis of a claim must be {cat.BASIS_INDEPENDENT!r} or "
+            f"{cat.BASIS_CONSTRUCTION!r}, got {basis!r}"
+        )
+    parts = np.atleast_1d(np.asarray(holds, dtype=bool))
+    n_hold = int(parts.sum())
+    if n_hold == parts.size:
+        verdict, category = SUPPORTED, cat.CAT_SUPPORTED
+        if basis == cat.BASIS_CONSTRUCTION:
+            category = cat.CAT_CONSTRUCTION
+    elif mixed and n_hold:
+        verdict = f"{NOT_SUPPORTED} (mixed: {n_hold} of {parts.size} parts hold)"
+        category = cat.CAT_MIXED
+    else:
+        verdict, category = NOT_SUPPORTED, cat.CAT_NOT_SUPPORTED
     return {
         "artefact": artefact,
         "quantity": claim,
         "published": "(claim)",
         "ours": evidence,
-        "max_abs_diff": None,
-        "max_rel_diff": None,
-        "verdict": SUPPORTED if bool(holds) else NOT_SUPPORTED,
+        **_NO_DIFFERENCE,
+        "verdict": verdict,
+        "category": cat.CAT_OURS if source == cat.SOURCE_OURS else category,
+        "source": source,
+        "basis": basis,
+        "n_values": int(parts.size),
+        "n_agree": n_hold,
+        "difference_text": "—",
     }
 
 
@@ -126,10 +220,50 @@ def computed_row(artefact: str, quantity: str, ours: object) -> dict[str, Any]:
         "artefact": artefact,
         "quantity": quantity,
         "published": "—",
-        "ours": _fmt(np.asarray(ours, dtype=float)),
-        "max_abs_diff": None,
-        "max_rel_diff": None,
+        "ours": cat.summarise(np.asarray(ours, dtype=float)),
+        **_NO_DIFFERENCE,
         "verdict": COMPUTED,
+        "category": cat.CAT_COMPUTED,
+        "source": cat.SOURCE_OURS,
+        "difference_text": "—",
+    }
+
+
+def not_reproduced_row(
+    artefact: str, quantity: str, published: object, ours: object, *, tried: str
+) -> dict[str, Any]:
+    """A row for a published value that none of our computations reaches.
+
+    Parameters
+    ----------
+    artefact, quantity : str
+        As in :func:`compare_row`.
+    published, ours : array_like
+        The published values and ours in each setting tried (any shapes: they are not
+        compared entry by entry).
+    tried : str
+        What was computed and how far it is (required): e.g. "linear FE: 1e-8 %; non-linear
+        FE: up to 1e3 %".
+
+    Raises
+    ------
+    ValueError
+        If ``tried`` is empty.
+    """
+    if not tried.strip():
+        raise ValueError(f"{artefact} {quantity}: say what was tried (tried=...), got {tried!r}")
+    return {
+        "artefact": artefact,
+        "quantity": quantity,
+        "published": cat.summarise(np.asarray(published, dtype=float)),
+        "ours": cat.summarise(np.asarray(ours, dtype=float)),
+        **_NO_DIFFERENCE,
+        # the report page of today knows no such group: it shows it among the divergences
+        "verdict": f"{DIVERGES}: not reproduced in any setting — {tried}",
+        "category": cat.CAT_NOT_REPRODUCED,
+        "source": cat.SOURCE_THESIS,
+        "cause": tried,
+        "difference_text": "—",
     }
 
 
@@ -162,6 +296,8 @@ class Comparison:
     tolerance: str = ""
     cause: str = ""
     part: object = None
+    basis: str = cat.BASIS_INDEPENDENT
+    source: str = cat.SOURCE_THESIS
 
     def row(self, ours: object) -> dict[str, Any]:
         """The report row for our value ``ours`` (see :func:`compare_row`)."""
@@ -176,6 +312,8 @@ class Comparison:
             atol=self.atol,
             tolerance=self.tolerance,
             cause=self.cause,
+            basis=self.basis,
+            source=self.source,
         )
 
 
@@ -186,9 +324,13 @@ class Claim:
     artefact: str
     claim: str
     evidence: str
+    source: str = cat.SOURCE_THESIS
+    mixed: bool = False
+    basis: str = cat.BASIS_INDEPENDENT
 
     def row(self, holds: object) -> dict[str, Any]:
-        """The row for ``holds``: a bool, or booleans that must all be true.
+        """The row for ``holds``: a bool, or booleans that must all be true (some, if ``mixed``:
+        see :func:`claim_row`).
 
         Raises
         ------
@@ -199,7 +341,15 @@ class Claim:
         arr = np.asarray(holds)
         if arr.dtype != bool:
             raise TypeError(f"{self.artefact}: a claim holds or not, got {holds!r}")
-        return claim_row(self.artefact, self.claim, self.evidence, bool(arr.all()))
+        return claim_row(
+            self.artefact,
+            self.claim,
+            self.evidence,
+            arr,
+            source=self.source,
+            mixed=self.mixed,
+            basis=self.basis,
+        )
 
 
 @dataclass(frozen=True)
@@ -214,5 +364,21 @@ class Computed:
         return computed_row(self.artefact, self.quantity, ours)
 
 
+@dataclass(frozen=True)
+class NotReproduced:
+    """A :func:`not_reproduced_row` waiting for our value(s) in the settings tried."""
+
+    artefact: str
+    quantity: str
+    published: object
+    tried: str
+
+    def row(self, ours: object) -> dict[str, Any]:
+        """The row for our value(s) ``ours``."""
+        return not_reproduced_row(
+            self.artefact, self.quantity, self.published, ours, tried=self.tried
+        )
+
+
 #: A report row waiting for the recorded value it reports on.
-RowSpec = Comparison | Claim | Computed
+RowSpec = Comparison | Claim | Computed | NotReproduced

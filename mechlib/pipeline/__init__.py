@@ -15,6 +15,9 @@ rerun       ``make rerun`` and the determinism check (byte-identical records, co
 references  records against ``tests/references``; ``make references``
 bookbuild   the book's generated pages (chapters, report, Figs 1 and 9)
 book/       the book build's parts: cell rules, report page, diagrams, HTML and browser checks
+verdicts    report rows read back from records: categories, counts, roll-up per thesis artefact
+landing     the landing page, generated from the records
+pagecheck   checks of what a page shows: jargon, bare outputs, paths, counts, uncovered artefacts
 pdf         ``make pdf``: the single-page build printed by headless Chromium
 pdfcheck    ``make check-pdf``: the PDF against its HTML (pages, titles, figures, typeset math)
 cli         the command line

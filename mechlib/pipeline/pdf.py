@@ -28,41 +28,18 @@ import sys
 import tempfile
 from pathlib import Path
 
+from mechlib.pipeline.book import browser as chromium
 from mechlib.pipeline.pdfcheck import ToolMissing, check, page_order, pdf_pages, run_tool
 
-BROWSERS = ("chromium", "chromium-browser", "google-chrome")
 POPPLER = ("pdfinfo", "pdftotext", "pdfimages", "pdfunite")
-# the flags of mechlib.book.browser (offline, root, no first-run chatter), kept here so the two
-# wings can move independently
-FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--proxy-server=127.0.0.1:9",  # nothing listens there: any http(s) request fails
-    "--proxy-bypass-list=<-loopback>",
-    "--no-pdf-header-footer",
-)
+# the browser flags of the HTML check (offline, root, no first-run chatter), and no page header
+FLAGS = (*chromium.FLAGS, "--no-pdf-header-footer")
 VIRTUAL_TIME_MS = 30000  # virtual time for the page's scripts (MathJax) before the print
 PRINT_TIMEOUT_S = 300  # wall-clock limit of one page's print
 
 
-def find_browser() -> str | None:
-    """Path of a Chromium executable, or None."""
-    return next((p for p in map(shutil.which, BROWSERS) if p), None)
-
-
-def offline_prefix() -> list[str]:
-    """``["unshare", "-n"]`` where a process may get a network namespace without any network."""
-    unshare = shutil.which("unshare")
-    if unshare is None:
-        return []
-    done = subprocess.run([unshare, "-n", "true"], capture_output=True, check=False)
-    return [unshare, "-n"] if done.returncode == 0 else []
+find_browser = chromium.find_browser
+offline_prefix = chromium.offline_prefix
 
 
 def print_page(browser: str, page: Path, out: Path, profile: Path) -> None:
@@ -115,7 +92,7 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     """
     browser = browser or find_browser()
     if browser is None:
-        raise ToolMissing(f"no Chromium found (looked for {', '.join(BROWSERS)})")
+        raise ToolMissing(f"no Chromium found (looked for {', '.join(chromium.BROWSERS)})")
     pages = page_order(html_dir)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -1,0 +1,152 @@
+"""Verdict categories of the reproduction report, and the cells that describe a difference.
+
+Every report row (:mod:`mechlib.report`) carries a ``category``: a structured field set from the
+numbers and from what the row declares — the ``basis`` of an agreement and the ``source`` of a
+statement — never parsed back from the verdict text. The report's tallies and the landing page
+count these categories; only :data:`CLAIM_CATEGORIES` are counted as claims of the thesis, and a
+finding of ours (:data:`CAT_OURS`) is never counted with them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: an independent computation agrees with the published value within the stated tolerance
+CAT_REPRODUCED = "reproduced"
+#: agreement that holds by construction: we fitted to the published value, or it follows from one
+CAT_CONSTRUCTION = "consistent by construction"
+#: our independent computation disagrees; the row names the cause
+CAT_DIVERGES = "diverges"
+#: the published values contradict each other (a copy error, two tables that cannot both hold)
+CAT_INCONSISTENT = "inconsistency inside the thesis"
+#: a published value that none of our computations reaches; the row says what was tried
+CAT_NOT_REPRODUCED = "not reproduced"
+CAT_SUPPORTED = "thesis claim supported"
+CAT_NOT_SUPPORTED = "thesis claim not supported"
+#: a claim made of several parts, some of which hold
+CAT_MIXED = "thesis claim mixed"
+#: a hypothesis or result of ours: never counted with the thesis's claims or values
+CAT_OURS = "our finding beyond the thesis"
+CAT_COMPUTED = "computed (no published value)"
+#: every category, in the order the report and the landing page list them
+CATEGORIES = (
+    CAT_REPRODUCED,
+    CAT_CONSTRUCTION,
+    CAT_DIVERGES,
+    CAT_INCONSISTENT,
+    CAT_NOT_REPRODUCED,
+    CAT_SUPPORTED,
+    CAT_NOT_SUPPORTED,
+    CAT_MIXED,
+    CAT_OURS,
+    CAT_COMPUTED,
+)
+CLAIM_CATEGORIES = (CAT_SUPPORTED, CAT_NOT_SUPPORTED, CAT_MIXED)
+
+#: what a comparison's agreement rests on: an independent computation (default), a fit to the
+#: published value or an input taken from it, or two published values set against each other
+BASIS_INDEPENDENT = "independent"
+BASIS_CONSTRUCTION = "construction"
+BASIS_THESIS = "thesis-inconsistency"
+BASES = (BASIS_INDEPENDENT, BASIS_CONSTRUCTION, BASIS_THESIS)
+#: whose statement a row checks: the thesis's (default) or ours
+SOURCE_THESIS = "thesis"
+SOURCE_OURS = "ours"
+SOURCES = (SOURCE_THESIS, SOURCE_OURS)
+
+#: values listed in full in a Published/Ours cell; longer arrays are summarised (size, range)
+LIST_MAX = 6
+#: significant digits of listed values and of the difference measure
+VALUE_DIGITS = 6
+DIFF_DIGITS = 3
+
+
+def summarise(values: np.ndarray, digits: int = VALUE_DIGITS) -> str:
+    """A Published/Ours cell: up to :data:`LIST_MAX` values listed, more summarised.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The values (any shape).
+    digits : int
+        Significant digits of listed values.
+
+    Returns
+    -------
+    str
+        ``"1, 2.5"``, or ``"72 values (12 × 6) from -1 to 1, max |x| = 1"``: never a repr.
+    """
+    flat = values.ravel()
+    if flat.size <= LIST_MAX:
+        return ", ".join(f"{v:.{digits}g}" for v in flat)
+    shape = " × ".join(str(n) for n in values.shape)
+    dims = f" ({shape})" if values.ndim > 1 else ""
+    return (
+        f"{flat.size} values{dims} from {flat.min():.4g} to {flat.max():.4g}, "
+        f"max |x| = {np.abs(flat).max():.4g}"
+    )
+
+
+def difference_text(
+    max_abs_diff: float, published_scale: float, resolution_ratio: float | None = None
+) -> str:
+    """The Difference cell: the largest |ours − published| relative to the largest |published|.
+
+    Parameters
+    ----------
+    max_abs_diff : float
+        Largest absolute difference, in the published value's units.
+    published_scale : float
+        Largest |published value| of the row (0 when all are printed as 0).
+    resolution_ratio : float, optional
+        Largest difference in units of half the last printed digit, when the row gives one.
+
+    Returns
+    -------
+    str
+        E.g. ``"0.0294 % of max |published|"`` or ``"1.66e+03 × max |published|"``, with the
+        printed-resolution ratio appended; :data:`DIFF_DIGITS` significant digits.
+    """
+    if max_abs_diff < 0 or published_scale < 0:
+        raise ValueError(
+            f"max_abs_diff and published_scale must be >= 0, got {max_abs_diff}, {published_scale}"
+        )
+    d = DIFF_DIGITS
+    if published_scale == 0:
+        text = f"{max_abs_diff:.{d}g} (published values all 0)"
+    else:
+        rel = max_abs_diff / published_scale
+        text = (
+            f"{100 * rel:.{d}g} % of max |published|"
+            if rel <= 1
+            else f"{rel:.{d}g} × max |published|"
+        )
+    if resolution_ratio is not None:
+        text += f"; {resolution_ratio:.{d}g} × half the last printed digit"
+    return text
+
+
+def check_kinds(basis: str, source: str) -> None:
+    """Raise ``ValueError`` naming ``basis`` or ``source`` when it is not one of the allowed."""
+    if basis not in BASES:
+        raise ValueError(f"basis must be one of {BASES}, got {basis!r}")
+    if source not in SOURCES:
+        raise ValueError(f"source must be one of {SOURCES}, got {source!r}")
+
+
+def comparison_category(
+    agree: bool, basis: str = BASIS_INDEPENDENT, source: str = SOURCE_THESIS
+) -> str:
+    """The category of a comparison from whether all values agree and what it declares.
+
+    A hypothesis of ours is :data:`CAT_OURS` whatever the numbers; agreement is
+    :data:`CAT_CONSTRUCTION` when it holds by construction, else :data:`CAT_REPRODUCED`; a
+    divergence is :data:`CAT_INCONSISTENT` when published values are set against each other,
+    else :data:`CAT_DIVERGES` (also when agreement by construction fails).
+    """
+    check_kinds(basis, source)
+    if source == SOURCE_OURS:
+        return CAT_OURS
+    if agree:
+        return CAT_CONSTRUCTION if basis == BASIS_CONSTRUCTION else CAT_REPRODUCED
+    return CAT_INCONSISTENT if basis == BASIS_THESIS else CAT_DIVERGES

@@ -1,0 +1,365 @@
+"""The book's landing page, generated from the records: readable in thirty seconds.
+
+:func:`write_landing` writes a MyST page with what the thesis is (prose from
+:data:`THESIS_TEXT`, which states no result), one table with a verdict per thesis artefact
+(:func:`mechlib.pipeline.verdicts.rollup`), the counts per verdict category, the main findings in
+a sentence each with a link to their evidence, and the profile the book was built with.
+
+Every result the page states is read from the records: a finding (:class:`Finding`) quotes
+recorded values, and is shown only when the report row it rests on has one of the categories
+that make its sentence true (else its ``otherwise`` sentence, else nothing).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from mechlib import categories as cat
+from mechlib.pipeline import verdicts
+
+#: A recorded value: (notebook, record key, index into the value, or "max"/"min" of it, or None).
+Quote = tuple[str, str, int | tuple[int, ...] | str | None]
+#: ``link(page, what, text)`` → a MyST link to the section of chapter ``page`` that shows ``what``.
+Link = Callable[[str, str, str], str]
+#: profile names: what ``notebooks/profiles/<name>`` may be called
+_PROFILE = re.compile(r"^[A-Za-z0-9_-]+$")
+#: the record keys that hold a chapter's parameters
+PARAMETER_PREFIX = "parameters."
+
+THESIS_TEXT = """\
+# An executable reproduction of a 2010 thesis on mechanism modelling
+
+This book re-derives, from code that runs whenever the book is built, the tables, figures and
+equations of a 2010 master's thesis from EAFIT University (Medellín) on predicting small
+quasi-static deformations of mechanisms. The thesis has two studies.
+
+**Chapter 2 — design of computer experiments on a compliant mechanism.** The HexFlex, a flat
+aluminium six-degree-of-freedom nano-positioner, is modelled with finite elements and pushed at
+three tabs, in and out of plane. A 12-run Plackett–Burman screening (Tables 2–3, Figs 6–7) shows
+which forces move which pose component; a 30-run uniform design (Table 4) feeds a linear
+force→pose meta-model $S_T$ (Eqs 6–9), validated on 1000 random runs (Table 5, Eqs 10–11). The
+thesis claims that the HexFlex is linear over its ±1 N actuator range and that a 6 × 6 matrix is
+an accurate, real-time-capable model of it.
+
+**Chapter 3 — divide-and-conquer kinematic identification.** A planar five-bar (5R) parallel
+mechanism is calibrated leg by leg, with postures chosen by an observability index (Figs 9–14,
+Tables 6–8); the thesis claims that this beats identifying all parameters at once.
+
+The thesis used ANSYS; we use SfePy, Python and open libraries. Every number in this book is
+computed when the book is built and checked against a committed reference; the thesis's printed
+values are used only as the published values to compare against. The
+[reproduction report](report.md) lists every compared quantity with its published value, ours
+and a verdict.
+"""
+
+LEGEND = (
+    "*Reproduced*: our independent computation agrees within the tolerance the report states. "
+    "*Consistent by construction*: we fitted to the published value or computed ours from it, "
+    "so agreement is expected, not evidence. *Inconsistency inside the thesis*: published "
+    "values contradict each other. *No row*: the report does not yet compare this artefact."
+)
+
+RERUN_TEXT = """\
+```{admonition} Re-run this page
+Each chapter is a notebook whose first cell holds its parameters.
+`make run NB=published_doe ARGS="-p n_random_designs 5000"` executes one into `build/runs/`
+without touching this build; `make book PROFILE=full` builds the whole book with the full-size
+experiments.
+```
+"""
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A main finding: one sentence quoting recorded values, linked to its evidence.
+
+    Attributes
+    ----------
+    title : str
+        A few words, shown in bold.
+    text : str
+        The sentence, a ``str.format`` template whose fields are the names of ``values``.
+    values : mapping of str to Quote
+        The recorded values the sentence quotes.
+    row : (notebook, artefact, start of the quantity)
+        The report row the sentence rests on.
+    shown_if : tuple of str
+        The categories of that row for which ``text`` is true.
+    otherwise : (title, text)
+        Title and sentence for any other category (empty: the finding is left out).
+    holds : bool, optional
+        Also required of the row: that its values agree or its claim holds (True) or not
+        (False); a finding of ours has one category whether it holds or not.
+    evidence : (page, what)
+        Where the book shows the evidence (a chapter page and the artefact its section names).
+    """
+
+    title: str
+    text: str
+    values: Mapping[str, Quote]
+    row: tuple[str, str, str]
+    shown_if: tuple[str, ...]
+    evidence: tuple[str, str]
+    otherwise: tuple[str, str] = ("", "")
+    holds: bool | None = None
+
+
+_THESIS_ERROR = (cat.CAT_DIVERGES, cat.CAT_INCONSISTENT)
+#: The findings the landing page states, in reading order (their numbers come from the records).
+FINDINGS: tuple[Finding, ...] = (
+    Finding(
+        "The screening tables carry printing errors.",
+        "Table 2 is printed in nm and mrad although its header says µm and µrad (its x column is "
+        "{ratio_x:.1f} times what Eq 8 predicts in µm), and Table 3's summary rows contradict its "
+        "own effects (the median |effect| of x is {nu_x:.0f} nm, not the θx value printed there).",
+        {
+            "ratio_x": ("published_doe", "units.table2_over_eq8", 0),
+            "nu_x": ("published_doe", "table3.lenth_nu", 0),
+        },
+        ("published_doe", "Table 2", "unit ratio"),
+        _THESIS_ERROR,
+        ("published_doe", "Table 3"),
+    ),
+    Finding(
+        "Eq 8 was fitted to Table 2, not to Table 4.",
+        "A linear fit to the screening runs of Table 2 gives Eq 8's entries to {t2:.1e} relative; "
+        "a fit to the uniform design of Table 4, the data the text names, misses them by up to "
+        "{t4:.2%}.",
+        {
+            "t2": ("published_doe", "eq8.max_rel_diff_nonzero", 2),
+            "t4": ("published_doe", "eq8.max_rel_diff_nonzero", 0),
+        },
+        ("published_doe", "Eq 8", "S_T vs OLS fit to Table 4"),
+        _THESIS_ERROR,
+        ("published_doe", "Eq 8"),
+    ),
+    Finding(
+        "Table 5 comes from a linear analysis (our reading).",
+        "On a model with Eq 8's compliance the linear meta-model misses the geometrically "
+        "non-linear FE by up to {nl:.4g} % in {runs:.0f} runs at ±1 N, while Table 5's largest "
+        "published error is "
+        "{pub:.2g} %: the published errors are those of a linear FE analysis.",
+        {
+            "nl": ("virtual_experiments", "table5.nonlinear.max_rel_pct", "max"),
+            "pub": ("virtual_experiments", "table5.published_worst_rel_pct", None),
+            "runs": ("virtual_experiments", "table5.nonlinear.converged_runs", None),
+        },
+        ("virtual_experiments", "Table 5", "(ours) the published errors imply"),
+        (cat.CAT_OURS, cat.CAT_SUPPORTED),
+        ("virtual_experiments", "Table 5"),
+        holds=True,
+    ),
+    Finding(
+        "Divide and conquer does not beat the traditional identification.",
+        "In the thesis's own setup the 5R calibrated leg by leg reaches a workspace RMS error of "
+        "{dc:.1f} µm against {trad:.1f} µm for the traditional method, and is better in only "
+        "{share:.0%} of the paired trials.",
+        {
+            "dc": ("fivebar_identification", "mc.rms_mean_um", 0),
+            "trad": ("fivebar_identification", "mc.rms_mean_um", 1),
+            "share": ("fivebar_identification", "mc.share_dc_better", None),
+        },
+        ("fivebar_identification", "Figs 13–14", "D&C gives a better calibration"),
+        (cat.CAT_NOT_SUPPORTED, cat.CAT_MIXED),
+        ("fivebar_identification", "Fig 14"),
+        otherwise=(
+            "Divide and conquer beats the traditional identification.",
+            "In the thesis's own setup the 5R calibrated leg by leg reaches a workspace RMS "
+            "error of {dc:.1f} µm against {trad:.1f} µm for the traditional method, better in "
+            "{share:.0%} of the paired trials.",
+        ),
+    ),
+)
+
+
+def doc_link(page: str, what: str, text: str) -> str:
+    """A MyST link to chapter page ``page`` (``what`` unused: no section labels known)."""
+    return f"{{doc}}`{text} </chapters/{page}>`"
+
+
+def quote(records: verdicts.Records, where: Quote) -> float:
+    """The recorded number ``where`` names (an element, or the max/min of an array).
+
+    Raises
+    ------
+    KeyError
+        When the notebook or the key was not recorded (naming both).
+    ValueError
+        When the quoted element is not one number.
+    """
+    notebook, key, index = where
+    values = records.get(notebook, {}).get("values", {})
+    if key not in values:
+        raise KeyError(f"landing: {notebook} recorded no value {key!r}")
+    arr = np.asarray(values[key]["value"], dtype=float)
+    item = (
+        arr.max()
+        if index == "max"
+        else arr.min()
+        if index == "min"
+        else arr[() if index is None else index]
+    )
+    if np.ndim(item):
+        raise ValueError(f"landing: {notebook} {key}[{index}] is not one number: {item!r}")
+    return float(item)
+
+
+def find_row(rows: Sequence[verdicts.ReportRow], spec: tuple[str, str, str]) -> verdicts.ReportRow:
+    """The report row ``(notebook, artefact, start of quantity)`` (the first that matches).
+
+    Raises
+    ------
+    KeyError
+        When no row matches, naming the three parts.
+    """
+    page, artefact, quantity = spec
+    for row in rows:
+        f = row.fields
+        if row.page == page and f["artefact"] == artefact and f["quantity"].startswith(quantity):
+            return row
+    raise KeyError(f"landing: no report row {artefact!r} {quantity!r}… in {page}")
+
+
+def finding_lines(
+    finding: Finding, records: verdicts.Records, rows: Sequence[verdicts.ReportRow], link: Link
+) -> list[str]:
+    """The finding as a Markdown list item, or no line when its row or values are missing or its
+    row's category makes neither sentence true."""
+    try:
+        row = find_row(rows, finding.row)
+        numbers = {name: quote(records, where) for name, where in finding.values.items()}
+    except KeyError:
+        return []
+    shown = row.category in finding.shown_if and finding.holds in (None, row.holds)
+    title, template = (finding.title, finding.text) if shown else finding.otherwise
+    if not template:
+        return []
+    page, what = finding.evidence
+    sentence = template.format(**numbers)
+    return [f"- **{title.rstrip('.')}** ({row.category}). {sentence} "
+            f"Evidence: {link(page, what, what)}."]  # fmt: skip
+
+
+def _escape(text: str) -> str:
+    return text.replace("|", "\\|").replace("\n", " ")
+
+
+def artefact_table(rows: Sequence[verdicts.ReportRow], link: Link) -> str:
+    """One line per thesis artefact: its title, its verdict and the roll-up of its rows."""
+    lines = ["| Artefact | In the thesis | Verdict | Rows |", "|---|---|---|---|"]
+    for entry in verdicts.rollup(rows):
+        name = entry["artefact"]
+        cell = link(entry["pages"][0], name, name) if entry["pages"] else name
+        detail = entry["summary"].split(": ", 1)[1] if entry["rows"] else "—"
+        lines.append(
+            f"| {cell} | {_escape(entry['title'])} | {_escape(entry['verdict'])} | "
+            f"{_escape(detail)} |"
+        )
+    return "\n".join(lines)
+
+
+def counts_sentence(counts: Mapping[str, int]) -> str:
+    """One sentence of the counts: how many rows compare published values, test the thesis's
+    claims, or go beyond the thesis."""
+    groups = {name: sum(counts[c] for c in members) for name, members in verdicts.COUNT_GROUPS}
+    sizes = ", ".join(f"{n} {name}" for name, n in groups.items())
+    return (
+        f"The report has {sum(counts.values())} rows ({sizes}); findings of ours are never "
+        f"counted among the thesis's claims, and agreement that holds by construction is not "
+        f"counted as reproduction."
+    )
+
+
+def _plain(value: Any) -> str:
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, list):
+        return ", ".join(_plain(v) for v in value)
+    return str(value)
+
+
+def profile_text(records: verdicts.Records, profile: str) -> str:
+    """The profile named and every chapter's recorded parameters (``parameters.*`` records)."""
+    parts = []
+    for name, rec in sorted(records.items()):
+        params = {
+            k.removeprefix(PARAMETER_PREFIX): v["value"]
+            for k, v in sorted(rec.get("values", {}).items())
+            if k.startswith(PARAMETER_PREFIX)
+        }
+        if params:
+            listed = "; ".join(f"`{k}` = {_plain(v)}" for k, v in params.items())
+            parts.append(f"- {name}: {listed}")
+    head = f"This book was built with the **{profile}** profile. Its recorded parameters:"
+    return "\n".join([head, "", *parts]) if parts else head.replace(" Its", " No")
+
+
+def landing_markdown(records: verdicts.Records, profile: str, link: Link = doc_link) -> str:
+    """The landing page's MyST text (see :func:`write_landing`)."""
+    if not isinstance(profile, str) or not _PROFILE.match(profile):
+        raise ValueError(f"profile must be a name of letters, digits, - or _, got {profile!r}")
+    rows = verdicts.load_rows(records)
+    counts = verdicts.category_counts(rows)
+    findings = [line for f in FINDINGS for line in finding_lines(f, records, rows, link)]
+    return "\n".join(
+        [
+            THESIS_TEXT,
+            "## Verdict per thesis artefact",
+            "",
+            LEGEND,
+            "",
+            artefact_table(rows, link),
+            "",
+            "## Counts per verdict",
+            "",
+            counts_sentence(counts),
+            "",
+            verdicts.counts_table(counts),
+            "",
+            "## Main findings",
+            "",
+            *(findings or ["No finding could be stated from this build's records."]),
+            "",
+            "## This build",
+            "",
+            profile_text(records, profile),
+            "",
+            RERUN_TEXT,
+        ]
+    )
+
+
+def write_landing(
+    records: verdicts.Records | Path, out: Path, profile: str, *, link: Link = doc_link
+) -> None:
+    """Write the landing page ``out`` from the records (only when its text changed).
+
+    Parameters
+    ----------
+    records : mapping or Path
+        ``{notebook: record}`` or the folder of record files (``build/records``).
+    out : Path
+        The page, e.g. ``book/intro.md``.
+    profile : str
+        The profile the book was built with (``ci``, ``full``, …).
+    link : callable, optional
+        ``link(page, what, text)`` → a MyST link to the section of a chapter page (the book
+        build's ``Linker``); default: a link to the page.
+
+    Raises
+    ------
+    ValueError
+        For a profile that is not a plain name.
+    FileNotFoundError
+        For a records folder without records.
+    """
+    text = landing_markdown(verdicts.load_records(records), profile, link)
+    out = Path(out)
+    if not out.exists() or out.read_text() != text:
+        out.write_text(text)

@@ -1,0 +1,292 @@
+"""Report rows gathered from the records, counted per verdict category and rolled up per artefact.
+
+The rows are the ones the notebooks recorded (:mod:`mechlib.report` builds them, with a
+``category`` from :mod:`mechlib.categories`). This module reads them back from the records, counts
+them per category, rolls them up per thesis artefact (Tables 1–8, Figs 1–14, Eqs 6–11: the
+thesis's inventory is :data:`THESIS_ARTEFACTS`) and names the artefacts that no row reports on.
+The landing page (:mod:`mechlib.pipeline.landing`) and the report page show the same counts, made
+here once.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from mechlib import categories as cat
+from mechlib import report
+from mechlib.pipeline.book import artefacts
+
+#: Every numbered artefact of the thesis that the book reproduces, with its chapter and a short
+#: title after its caption (``shared/paper/thesis.md``: Tables 1–5, Figs 1–8 and Eqs 6–11 in
+#: chapter 2; Figs 9–14 and Tables 6–8 in chapter 3). Eqs 1–5 and 12–26 define notation only.
+THESIS_ARTEFACTS: tuple[tuple[str, int, int, str], ...] = (
+    ("table", 1, 2, "Studied factors: forces at the HexFlex tabs"),
+    ("table", 2, 2, "Plackett–Burman design, 12 runs and 6 factors, and its responses"),
+    ("table", 3, 2, "Lenth's analysis of the screening"),
+    ("table", 4, 2, "Uniform design, 30 runs, and its responses"),
+    ("table", 5, 2, "Meta-model error over 1000 random experiments"),
+    ("fig", 1, 2, "Force–displacement meta-modelling methodology"),
+    ("fig", 2, 2, "The six-degree-of-freedom compliant mechanism (HexFlex)"),
+    ("fig", 3, 2, "The HexFlex's six motions"),
+    ("fig", 4, 2, "The HexFlex's actuator directions"),
+    ("fig", 5, 2, "Finite-element model of the HexFlex"),
+    ("fig", 6, 2, "Half-normal probability plots of the screening"),
+    ("fig", 7, 2, "Pareto charts of the screening"),
+    ("fig", 8, 2, "Deformed shape in one validation experiment"),
+    ("eq", 6, 2, "Quadratic meta-model"),
+    ("eq", 7, 2, "Linear meta-model, pose = S_T · forces"),
+    ("eq", 8, 2, "The fitted matrix S_T"),
+    ("eq", 9, 2, "Inverse model, forces = S_T⁻¹ · pose"),
+    ("eq", 10, 2, "Maximum absolute error (MAXABS)"),
+    ("eq", 11, 2, "Root mean square error (RMSE)"),
+    ("fig", 9, 3, "Kinematic identification protocol of symmetrical parallel mechanisms"),
+    ("fig", 10, 3, "Planar 5R symmetrical mechanism"),
+    ("fig", 11, 3, "Planar 5R leg loop"),
+    ("fig", 12, 3, "Postures selected for identification"),
+    ("fig", 13, 3, "Residual parameter errors before and after calibration"),
+    ("fig", 14, 3, "Local RMS error over the maximal inscribed workspace after calibration"),
+    ("table", 6, 3, "Computational and measurement costs of kinematic identification"),
+    ("table", 7, 3, "Identification results (nominal and real parameters)"),
+    ("table", 8, 3, "5R computational and measurement costs"),
+)
+#: The verdict an artefact shows when its rows have several: what a reader must know first
+#: (a published value not reached, then a divergence, …); its other verdicts are in its summary.
+HEADLINE_ORDER = (
+    cat.CAT_NOT_REPRODUCED,
+    cat.CAT_DIVERGES,
+    cat.CAT_INCONSISTENT,
+    cat.CAT_NOT_SUPPORTED,
+    cat.CAT_MIXED,
+    cat.CAT_REPRODUCED,
+    cat.CAT_SUPPORTED,
+    cat.CAT_CONSTRUCTION,
+    cat.CAT_OURS,
+    cat.CAT_COMPUTED,
+)
+#: What the landing table shows for an artefact that no report row covers.
+NO_ROW = "no row"
+#: How the counts are grouped: the thesis's published values, its claims, and ours.
+COUNT_GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    (
+        "published values",
+        (
+            cat.CAT_REPRODUCED,
+            cat.CAT_CONSTRUCTION,
+            cat.CAT_DIVERGES,
+            cat.CAT_INCONSISTENT,
+            cat.CAT_NOT_REPRODUCED,
+        ),
+    ),
+    ("claims of the thesis", cat.CLAIM_CATEGORIES),
+    ("beyond the thesis", (cat.CAT_OURS, cat.CAT_COMPUTED)),
+)
+#: Header of the counts table; :func:`mechlib.pipeline.pagecheck.count_table` finds it by this.
+COUNTS_HEADER = "| Verdict | Counted among | Rows |"
+#: Rows recorded before rows carried a category: their verdict text's group (legacy records only).
+_LEGACY = (
+    (report.WITHIN, cat.CAT_REPRODUCED),
+    (report.REPRODUCED, cat.CAT_REPRODUCED),
+    (report.DIVERGES, cat.CAT_DIVERGES),
+    (report.NOT_SUPPORTED, cat.CAT_NOT_SUPPORTED),
+    (report.SUPPORTED, cat.CAT_SUPPORTED),
+    (report.COMPUTED, cat.CAT_COMPUTED),
+)
+
+
+@dataclass(frozen=True)
+class ReportRow:
+    """A report row with the page (notebook name) that recorded it."""
+
+    page: str
+    fields: dict[str, Any]
+
+    @property
+    def category(self) -> str:
+        """The row's verdict category (see :func:`row_category`)."""
+        return row_category(self.fields)
+
+    @property
+    def holds(self) -> bool:
+        """Whether the row's values all agree or its claim holds (see :func:`row_holds`)."""
+        return row_holds(self.fields)
+
+    @property
+    def artefacts(self) -> list[artefacts.Artefact]:
+        """The thesis artefacts the row names, e.g. ``[("table", 6), ("table", 8)]``."""
+        return artefacts.parse(self.fields["artefact"])
+
+
+def row_category(fields: Mapping[str, Any]) -> str:
+    """A row's ``category`` field; for a row recorded before that field existed, the category
+    of its verdict group (such a row knows no basis or source: it cannot say "by construction").
+
+    Raises
+    ------
+    ValueError
+        For a category or verdict that :mod:`mechlib.report` does not produce.
+    """
+    if "category" in fields:
+        if fields["category"] not in cat.CATEGORIES:
+            raise ValueError(f"unknown category {fields['category']!r}; known: {cat.CATEGORIES}")
+        return fields["category"]
+    verdict = fields["verdict"]
+    for prefix, category in _LEGACY:
+        if verdict == prefix or verdict.startswith((prefix + " ", prefix + ":")):
+            return category
+    raise ValueError(f"unknown verdict {verdict!r} in a row without a category")
+
+
+Records = Mapping[str, Mapping[str, Any]]
+
+
+def row_holds(fields: Mapping[str, Any]) -> bool:
+    """Whether all of a row's values agree (a comparison) or its claim holds: from its counts
+    (``n_agree`` of ``n_values``), or for a row recorded before them, from its verdict group."""
+    if "n_values" in fields and "n_agree" in fields:
+        return fields["n_agree"] == fields["n_values"]
+    return fields["verdict"].startswith((report.REPRODUCED, report.WITHIN, report.SUPPORTED))
+
+
+def load_records(records: Records | Path) -> dict[str, Mapping[str, Any]]:
+    """``{notebook: record}`` from a folder of record files (``<notebook>.json``), or as given.
+
+    Raises
+    ------
+    FileNotFoundError
+        When ``records`` is a folder without any record.
+    """
+    if isinstance(records, (str, Path)):
+        paths = sorted(Path(records).glob("*.json"))
+        if not paths:
+            raise FileNotFoundError(f"records: no <notebook>.json in {records}")
+        return {p.stem: json.loads(p.read_text()) for p in paths}
+    return dict(records)
+
+
+def load_rows(records: Records | Path) -> list[ReportRow]:
+    """Every report row of a folder of records or of loaded records (see :func:`load_records`).
+
+    Parameters
+    ----------
+    records : mapping or Path
+        ``{notebook: record}`` (a record as :class:`mechlib.records.Recorder` saves it) or a
+        folder holding the record files.
+    """
+    return [
+        ReportRow(rec.get("notebook", name), dict(row))
+        for name, rec in sorted(load_records(records).items())
+        for row in rec.get("report", [])
+    ]
+
+
+def category_counts(rows: Iterable[ReportRow]) -> dict[str, int]:
+    """Number of rows per category, every category present (zero if none), in report order."""
+    counts = dict.fromkeys(cat.CATEGORIES, 0)
+    for row in rows:
+        counts[row.category] += 1
+    return counts
+
+
+def counts_table(counts: Mapping[str, int]) -> str:
+    """The counts per category as a Markdown table (the landing and the report page show it).
+
+    Raises
+    ------
+    ValueError
+        If ``counts`` misses a category or names an unknown one.
+    """
+    if set(counts) != set(cat.CATEGORIES):
+        raise ValueError(f"counts must name every category {cat.CATEGORIES}, got {sorted(counts)}")
+    lines = [COUNTS_HEADER, "|---|---|---:|"]
+    for group, members in COUNT_GROUPS:
+        lines += [f"| {category} | {group} | {counts[category]} |" for category in members]
+    lines.append(f"| all rows | | {sum(counts.values())} |")
+    return "\n".join(lines)
+
+
+def artefact_name(kind: str, number: int) -> str:
+    """``("fig", 6)`` → ``"Fig 6"``."""
+    return artefacts.name((kind, number))
+
+
+def _category_summary(category: str, rows: Sequence[ReportRow]) -> str:
+    n = len(rows)
+    text = f"{n} {'row' if n == 1 else 'rows'} {category}"
+    compared = [r.fields for r in rows if r.fields.get("n_values") and r.fields["published"] != "—"]
+    if compared and all(f.get("max_abs_diff") is not None for f in compared):
+        agree = sum(f["n_agree"] for f in compared)
+        text += f" ({agree}/{sum(f['n_values'] for f in compared)} values agree)"
+    return text
+
+
+def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
+    """One entry per thesis artefact (then any other artefact a row names), in the thesis's order.
+
+    A row naming several artefacts ("Tables 6, 8") counts for each of them.
+
+    Returns
+    -------
+    list of dict
+        ``artefact`` ("Table 3"), ``chapter``, ``title``, ``pages`` (notebooks whose rows it
+        has), ``rows`` (their number), ``counts`` ({category: rows}, only those present),
+        ``verdict`` (the first category present in :data:`HEADLINE_ORDER`, or :data:`NO_ROW`)
+        and ``summary`` (one line: rows and values agreeing per category).
+    """
+    known = [(k, n) for k, n, _, _ in THESIS_ARTEFACTS]
+    named = {a for row in rows for a in row.artefacts}
+    extra = sorted(named - set(known))
+    meta = {(k, n): (ch, title) for k, n, ch, title in THESIS_ARTEFACTS}
+    out = []
+    for key in [*known, *extra]:
+        mine = [r for r in rows if key in r.artefacts]
+        by_cat = {c: [r for r in mine if r.category == c] for c in cat.CATEGORIES}
+        present = {c: rs for c, rs in by_cat.items() if rs}
+        name = artefact_name(*key)
+        chapter, title = meta.get(key, (None, ""))
+        summary = "; ".join(_category_summary(c, rs) for c, rs in present.items())
+        out.append(
+            {
+                "artefact": name,
+                "chapter": chapter,
+                "title": title,
+                "pages": sorted({r.page for r in mine}),
+                "rows": len(mine),
+                "counts": {c: len(rs) for c, rs in present.items()},
+                "verdict": next((c for c in HEADLINE_ORDER if c in present), NO_ROW),
+                "summary": f"{name}: {summary}" if summary else f"{name}: {NO_ROW}",
+            }
+        )
+    return out
+
+
+def missing_artefacts(rows: Sequence[ReportRow]) -> list[str]:
+    """The thesis artefacts that no report row names (empty when every one has a row)."""
+    named = {a for row in rows for a in row.artefacts}
+    return [artefact_name(k, n) for k, n, _, _ in THESIS_ARTEFACTS if (k, n) not in named]
+
+
+def report_cells(fields: Mapping[str, Any]) -> dict[str, str]:
+    """The Published, Ours, Difference and Verdict cells of a report row, as plain text.
+
+    The Verdict cell is the row's category, then its cause (a divergence) or the tolerance its
+    agreement met; the Difference cell is :func:`mechlib.categories.difference_text`'s (a row
+    recorded before it existed shows its largest absolute difference, never a relative one).
+    """
+    category = row_category(fields)
+    detail = fields.get("cause") or ""
+    if not detail and fields.get("tolerance") and row_holds(fields):
+        detail = f"within {fields['tolerance']}"
+    difference = fields.get("difference_text")
+    if difference is None:
+        diff = fields.get("max_abs_diff")
+        difference = "—" if diff is None else f"{diff:.{cat.DIFF_DIGITS}g}"
+    return {
+        "published": str(fields["published"]),
+        "ours": str(fields["ours"]),
+        "difference": difference,
+        "verdict": f"{category}: {detail}" if detail else category,
+    }

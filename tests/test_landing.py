@@ -1,0 +1,217 @@
+"""The landing page and the per-artefact roll-up, generated from the committed reference records.
+
+The references were recorded before rows carried a category: :data:`DECLARATIONS` gives the
+``basis``/``source`` that the notebooks are to declare (the table handed to the lead), applied
+here to those rows the way :mod:`mechlib.report` would set them.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from mechlib import categories as cat
+from mechlib import report
+from mechlib.pipeline import landing, pagecheck, verdicts
+
+REFERENCES = Path(__file__).parent / "references"
+
+#: (notebook, artefact, start of quantity, declaration): what each row is to declare.
+DECLARATIONS: tuple[tuple[str, str, str, dict[str, str]], ...] = (
+    ("published_doe", "Table 2", "design matrix", {"basis": "construction"}),
+    ("published_doe", "Table 2", "unit ratio", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 3", "ν (median", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 3", "S₀ = 1.5", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 3", "ME (Lenth", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 3", "SME (Lenth", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 3", "ME, SME of x under", {"source": "ours"}),
+    ("published_doe", "Table 4", "CD² vs the published", {"source": "ours"}),
+    ("published_doe", "Eq 8", "S_T vs OLS fit to Table 2", {"source": "ours"}),
+    ("published_doe", "Eq 8", "S_T vs OLS fit to Table 4", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Eq 8", "S_T vs ridge fit", {"basis": "thesis-inconsistency"}),
+    ("hexflex_model", "Eq 8", "x←T1D1", {"basis": "construction"}),
+    ("hexflex_model", "Eq 8", "z←T1D2", {"basis": "construction"}),
+    ("hexflex_model", "Eq 8", "θx←T1D2", {"basis": "construction"}),
+    ("hexflex_model", "Eq 8", "|θz←T1D1|", {"basis": "construction"}),
+    ("hexflex_model", "Eq 8", "all 16 non-zero", {"basis": "construction"}),
+    ("virtual_experiments", "Table 2", "responses on our FE", {"basis": "construction"}),
+    ("virtual_experiments", "Table 3", "the same factors dominate", {"basis": "construction"}),
+    ("virtual_experiments", "Table 4", "responses on our FE", {"basis": "construction"}),
+    ("virtual_experiments", "Eq 7", "S_T fitted on our Table 4", {"basis": "construction"}),
+    ("virtual_experiments", "Eq 6", "quadratic and interaction", {"basis": "construction"}),
+    ("virtual_experiments", "Eq 9", "S_T⁻¹ S_T = I", {"basis": "construction"}),
+    ("virtual_experiments", "Table 5", "linear meta-model vs linear FE", {"basis": "construction"}),
+    ("virtual_experiments", "Table 5", "(ours) the published errors", {"source": "ours"}),
+    ("fivebar_identification", "Table 7", "nominal parameters", {"basis": "construction"}),
+    ("fivebar_identification", "Table 8", "measurement cost", {"basis": "thesis-inconsistency"}),
+    ("fivebar_identification", "Figs 13–14 (sensitivity)", "D&C better", {"source": "ours"}),
+    ("fivebar_identification", "Tables 6, 8", "regressor", {"basis": "thesis-inconsistency"}),
+)
+
+
+def _declare(row: dict[str, Any], basis: str = "independent", source: str = "thesis") -> None:
+    """Set a reference row's category as :mod:`mechlib.report` would from its declaration."""
+    holds = verdicts.row_holds(row)
+    if row["published"] == "(claim)":
+        report_row = report.claim_row("", "", "", holds, source=source, basis=basis)
+        row["category"] = report_row["category"]
+    else:
+        row["category"] = cat.comparison_category(holds, basis, source)
+
+
+def declared_references() -> dict[str, dict[str, Any]]:
+    """The reference records with :data:`DECLARATIONS` applied (each must match one row)."""
+    records = verdicts.load_records(REFERENCES)
+    records = copy.deepcopy(records)
+    for notebook, artefact, quantity, kwargs in DECLARATIONS:
+        rows = [
+            r
+            for r in records[notebook]["report"]
+            if r["artefact"] == artefact and r["quantity"].startswith(quantity)
+        ]
+        assert len(rows) == 1, (notebook, artefact, quantity)
+        _declare(rows[0], **kwargs)
+    return records
+
+
+@pytest.fixture(scope="module")
+def records() -> dict[str, dict[str, Any]]:
+    return declared_references()
+
+
+@pytest.fixture(scope="module")
+def page(records: dict[str, dict[str, Any]]) -> str:
+    return landing.landing_markdown(records, "ci")
+
+
+def test_landing_lists_every_thesis_artefact_with_its_verdict(page: str) -> None:
+    table = [line for line in page.splitlines() if line.startswith("| ")]
+    for kind, number, _, _ in verdicts.THESIS_ARTEFACTS:
+        name = verdicts.artefact_name(kind, number)
+        assert any(f"{name} " in line or f"{name}`" in line for line in table), name
+    assert "| Fig 1 | Force–displacement meta-modelling methodology | no row | — |" in page
+
+
+def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
+    records: dict[str, dict[str, Any]], page: str
+) -> None:
+    rows = verdicts.load_rows(records)
+    counts = verdicts.category_counts(rows)
+    assert pagecheck.count_table(page) == counts
+    assert counts[cat.CAT_CONSTRUCTION] == 14 and counts[cat.CAT_OURS] == 5
+    report_page = "# Report\n\n" + verdicts.counts_table(counts) + "\n"
+    assert pagecheck.counts_problems(page, report_page, rows) == []
+    wrong = report_page.replace(f"| reproduced | published values | {counts['reproduced']} |",
+                                "| reproduced | published values | 99 |")  # fmt: skip
+    assert pagecheck.counts_problems(page, wrong, rows) == [
+        f"report page: 'reproduced' shows 99 rows, the records have {counts['reproduced']}"
+    ]
+    assert "no table of counts" in pagecheck.counts_problems(page, "# Report", rows)[0]
+
+
+def test_our_hypothesis_is_not_counted_among_the_thesis_claims(page: str) -> None:
+    assert "(our finding beyond the thesis). On a model with Eq 8's compliance" in page
+    claims = pagecheck.count_table(page)
+    # of the 10 claim rows, 4 hold by construction on our linear model and 2 are ours: Table 1's
+    # levels, Figs 6-7's main effects, Table 4's uniformity and Figs 13-14's D&C claim remain
+    assert sum(claims[c] for c in cat.CLAIM_CATEGORIES) == 4
+
+
+def test_findings_quote_the_records_not_typed_numbers(records: dict[str, dict[str, Any]]) -> None:
+    changed = copy.deepcopy(records)
+    changed["fivebar_identification"]["values"]["mc.rms_mean_um"]["value"] = [42.04, 17.0]
+    text = landing.landing_markdown(changed, "ci")
+    assert "workspace RMS error of 42.0 µm against 17.0 µm" in text
+    # the sentence follows the row's category: a supported claim gets the other sentence
+    for row in changed["fivebar_identification"]["report"]:
+        if row["quantity"].startswith("D&C gives"):
+            row["category"] = cat.CAT_SUPPORTED
+    text = landing.landing_markdown(changed, "ci")
+    assert "**Divide and conquer beats the traditional identification**" in text
+    assert "does not beat" not in text
+
+
+def test_a_finding_whose_values_were_not_recorded_is_left_out(
+    records: dict[str, dict[str, Any]],
+) -> None:
+    smoke = copy.deepcopy(records)
+    del smoke["virtual_experiments"]["values"]["table5.nonlinear.max_rel_pct"]
+    text = landing.landing_markdown(smoke, "smoke")
+    assert "Table 5 comes from a linear analysis" not in text
+    assert "built with the **smoke** profile" in text
+    # our hypothesis that does not hold is not stated as holding
+    failed = copy.deepcopy(records)
+    for row in failed["virtual_experiments"]["report"]:
+        if row["quantity"].startswith("(ours)"):
+            row["n_values"], row["n_agree"] = 1, 0
+    assert "Table 5 comes from a linear analysis" not in landing.landing_markdown(failed, "ci")
+
+
+def test_landing_page_passes_its_own_text_checks(page: str) -> None:
+    assert pagecheck.markdown_problems(page, "intro.md") == []
+
+
+def test_write_landing_reads_a_records_folder_and_names_a_bad_profile(tmp_path: Path) -> None:
+    out = tmp_path / "intro.md"
+    landing.write_landing(REFERENCES, out, "ci")
+    assert out.read_text().startswith("# An executable reproduction")
+    assert "- virtual_experiments: `n_validation` = 1000" in out.read_text()
+    with pytest.raises(ValueError, match="profile must be a name"):
+        landing.write_landing(REFERENCES, out, "../full")
+    with pytest.raises(FileNotFoundError, match=r"no <notebook>\.json"):
+        landing.write_landing(tmp_path, out, "ci")
+
+
+def test_rollup_counts_each_named_artefact_and_summarises_values() -> None:
+    rows = [
+        verdicts.ReportRow("nb", report.compare_row("Table 3", "effects", [1.0] * 36, [1.0] * 36)),
+        verdicts.ReportRow(
+            "nb",
+            report.compare_row(
+                "Table 3",
+                "ν",
+                [19.6, 3.1],
+                [28763.8, 3.1],
+                rtol=0.01,
+                cause="copy error",
+                basis="thesis-inconsistency",
+            ),
+        ),
+        verdicts.ReportRow("nb", report.compare_row("Tables 6, 8", "size", [36], [12], cause="c")),
+    ]
+    by_name = {entry["artefact"]: entry for entry in verdicts.rollup(rows)}
+    assert by_name["Table 3"]["summary"] == (
+        "Table 3: 1 row reproduced (36/36 values agree); "
+        "1 row inconsistency inside the thesis (1/2 values agree)"
+    )
+    assert by_name["Table 3"]["verdict"] == "inconsistency inside the thesis"
+    assert by_name["Table 3"]["counts"] == {"reproduced": 1, "inconsistency inside the thesis": 1}
+    assert by_name["Table 6"]["rows"] == by_name["Table 8"]["rows"] == 1
+    assert by_name["Fig 1"]["verdict"] == verdicts.NO_ROW
+    assert "Fig 1: no report row" in pagecheck.artefact_problems(rows)
+    assert "Table 3: no report row" not in pagecheck.artefact_problems(rows)
+
+
+def test_every_declaration_changes_a_reference_row_category() -> None:
+    plain = verdicts.load_rows(REFERENCES)
+    declared = verdicts.load_rows(declared_references())
+    changed = [a for a, b in zip(plain, declared, strict=True) if a.category != b.category]
+    assert len(changed) == len(DECLARATIONS)
+
+
+def test_legacy_rows_map_their_verdict_and_unknown_ones_are_refused() -> None:
+    assert verdicts.row_category({"verdict": "within tolerance (1 %)"}) == cat.CAT_REPRODUCED
+    assert verdicts.row_category({"verdict": "diverges: x"}) == cat.CAT_DIVERGES
+    with pytest.raises(ValueError, match="unknown verdict"):
+        verdicts.row_category({"verdict": "fine"})
+    with pytest.raises(ValueError, match="unknown category"):
+        verdicts.row_category({"verdict": "reproduced", "category": "fine"})
+    assert json.loads(json.dumps(verdicts.rollup(verdicts.load_rows(REFERENCES))))
+
+
+def test_headline_order_ranks_every_category_once() -> None:
+    assert sorted(verdicts.HEADLINE_ORDER) == sorted(cat.CATEGORIES)
