@@ -88,7 +88,7 @@ notebooks: $(EXECUTED)
 # The HTML is rebuilt from scratch (seconds): an incremental Sphinx build re-reports no warning of
 # an unchanged page and skips copying book/_static when no page changed.
 book: $(EXECUTED)
-	$(PIPELINE) book --executed $(BUILD)/executed --records $(BUILD)/records --book book
+	$(PIPELINE) book --executed $(BUILD)/executed --records $(BUILD)/records --book book --profile $(PROFILE)
 	rm -rf book/_build
 	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet
 	@echo "Book: $(abspath book/_build/html/index.html)"
@@ -157,7 +157,7 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
 
 clean:
-	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md
+	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md book/intro.md
 
 # --- PDF of the book --------------------------------------------------------------------------
 # Headless Chromium prints the single-page HTML build after MathJax ran (from the build's own

@@ -6,7 +6,7 @@
   :mod:`mechlib.pipeline.book.cells` applied (computation folded, bookkeeping removed, machine
   paths and library warnings neutralised, headings labelled);
 * writes ``book/report.md``, the reproduction report (:mod:`mechlib.pipeline.book.reportpage`), and
-  ``book/generated/summary.md``, its verdict counts in one paragraph (included by ``intro.md``);
+  ``book/intro.md``, the landing page (:mod:`mechlib.pipeline.landing`), both from the records;
 * draws the thesis's Figs 1 and 9 on their pages in ``book/generated/``
   (:mod:`mechlib.pipeline.book.methods`);
 * checks that every ``file:`` entry of ``book/_toc.yml`` names an existing page, naming the
@@ -27,6 +27,7 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, records_dir
+from mechlib.pipeline import landing, verdicts
 from mechlib.pipeline.book import artefacts, methods, reportpage
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.records import load
@@ -150,15 +151,17 @@ def report_rows(
 def report_markdown(
     rows: dict[int, list[reportpage.Row]], chapters: list[reportpage.Chapter], link: Linker
 ) -> str:
-    """The report page: summary of verdicts, then one table per chapter in the thesis's order."""
-    every = [r for c in chapters for r in rows[c.number]]
+    """The report page: rows per verdict category and a verdict per thesis artefact, then one
+    table per chapter in the thesis's order."""
+    every = [verdicts.ReportRow(r.page, r.fields) for c in chapters for r in rows[c.number]]
     lines = [
         REPORT_HEADER,
         "## Summary",
         "",
-        reportpage.summary_sentence(reportpage.count_verdicts(every)),
+        verdicts.counts_table(verdicts.category_counts(every)),
         "",
-        reportpage.summary_table(rows, chapters),
+        "The verdict per thesis artefact, rolled up from these rows, is on the "
+        "[first page](intro.md).",
         "",
     ]
     for chapter in chapters:
@@ -175,20 +178,17 @@ def report_markdown(
     return "\n".join(lines)
 
 
-def build(executed: Path, records: Path, book: Path) -> list[str]:
-    """Write every generated page of ``book``; return the problems found in ``_toc.yml``."""
+def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> list[str]:
+    """Write every generated page of ``book`` (the landing page ``intro.md`` too, for the build
+    ``profile``); return the problems found in ``_toc.yml``."""
     toc = yaml.safe_load((Path(book) / "_toc.yml").read_text())
     chapters = toc_chapters(toc)
     link = Linker(copy_chapters(executed, Path(book) / "chapters"))
     rows = report_rows(records, chapters)
     _write(Path(book) / "report.md", report_markdown(rows, chapters, link))
+    landing.write_landing(records, Path(book) / "intro.md", profile, link=link)
     generated = Path(book) / "generated"
     generated.mkdir(parents=True, exist_ok=True)
-    every = [r for c in chapters for r in rows[c.number]]
-    _write(
-        generated / "summary.md",
-        reportpage.summary_sentence(reportpage.count_verdicts(every)) + "\n",
-    )
     methods.write_pages(generated, link)
     return missing_toc_pages(book)
 
@@ -199,8 +199,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--executed", type=Path, default=REPO_ROOT / "build" / "executed")
     parser.add_argument("--records", type=Path, default=records_dir())
     parser.add_argument("--book", type=Path, default=REPO_ROOT / "book")
+    parser.add_argument("--profile", default="ci", help="the build profile the landing page names")
     args = parser.parse_args(argv)
-    problems = build(args.executed, args.records, args.book)
+    problems = build(args.executed, args.records, args.book, args.profile)
     for problem in problems:
         print(problem, file=sys.stderr)
     return 2 if problems else 0
