@@ -114,3 +114,10 @@ def test_no_two_modules_import_each_other() -> None:
 def test_every_module_is_under_400_lines() -> None:
     long = {m: n for m, p in MODULES.items() if (n := len(p.read_text().splitlines())) >= 400}
     assert long == {}
+
+
+def test_every_notebook_is_a_declared_chapter() -> None:
+    from mechlib.pipeline.chapters import CHAPTERS
+
+    notebooks = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))
+    assert sorted(CHAPTERS) == notebooks  # an undeclared notebook would never be executed

@@ -21,6 +21,7 @@ CHAPTERS: tuple[str, ...] = (
     "hexflex_model",
     "virtual_experiments",
     "fivebar_identification",
+    "beyond_5r",
 )
 #: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
 #: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it
