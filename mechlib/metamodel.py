@@ -275,9 +275,10 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
     normalised targets, seeded optimiser restarts).
 
     On noise-free responses that are linear in the factors the optimal RBF length scales are
-    infinite and the optimal noise level zero, so the optimiser ends on those bounds;
-    scikit-learn's ConvergenceWarnings saying so are expected here and not shown (any other
-    warning is).
+    infinite and the optimal noise level zero, so the optimiser ends on those bounds, where
+    L-BFGS-B's line search may also stop with status ABNORMAL; scikit-learn's
+    ConvergenceWarnings saying either are expected here and not shown (any other warning is):
+    the fitted processes are judged by their errors on validation data.
     """
     import warnings
 
@@ -294,11 +295,8 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
             kernel, normalize_y=True, n_restarts_optimizer=2, random_state=seed
         )
         with warnings.catch_warnings():
-            warnings.filterwarnings(
-                "ignore",
-                message=".*close to the specified (upper|lower) bound",
-                category=ConvergenceWarning,
-            )
+            for message in (".*close to the specified (upper|lower) bound", "lbfgs failed to"):
+                warnings.filterwarnings("ignore", message=message, category=ConvergenceWarning)
             out.append(gp.fit(x, y[:, j]))
     return out
 

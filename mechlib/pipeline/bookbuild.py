@@ -39,11 +39,16 @@ html_theme.sidebar_secondary.remove: true
 # Reproduction report
 
 One row per thesis artefact and compared quantity, generated from the records that the chapters'
-notebooks wrote in this build (nothing on this page is typed by hand). *Reproduced* means the
-difference is within half a unit of the last digit the thesis printed; *within tolerance* names
-the relative tolerance allowed beyond that; *diverges* gives the cause found in the chapter.
-Differences are the largest absolute one (in the units of the published value) and, in brackets,
-the largest relative one. Each artefact links to the section of the chapter page that shows it.
+notebooks wrote in this build (nothing on this page is typed by hand). Each row has a verdict
+category: *reproduced* (our independent computation agrees within the tolerance named after it:
+half a unit of the last printed digit, round-off, or a stated one), *consistent by construction*
+(we fitted to the published value or computed ours from it, so agreement is expected, not
+evidence), *diverges* (with the cause found in the chapter), *inconsistency inside the thesis*
+(published values contradict each other), *not reproduced*, a claim of the thesis *supported*,
+*not supported* or *mixed*, and *our finding beyond the thesis* (never counted with the thesis's
+claims). The difference is the largest one relative to the largest published value and, where the
+thesis printed a finite number of digits, in units of half its last digit. Each artefact links to
+the section of the chapter page that shows it.
 
 """
 PAGE_SUFFIXES = (".md", ".ipynb", ".rst")
