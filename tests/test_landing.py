@@ -216,3 +216,16 @@ def test_legacy_rows_map_their_verdict_and_unknown_ones_are_refused() -> None:
 
 def test_headline_order_ranks_every_category_once() -> None:
     assert sorted(verdicts.HEADLINE_ORDER) == sorted(cat.CATEGORIES)
+
+
+def test_the_landing_page_says_what_made_the_build(records: dict[str, dict[str, Any]]) -> None:
+    import datetime as dt
+
+    from mechlib.pipeline import provenance
+
+    made = provenance.text(dt.datetime(2026, 1, 2, 3, 4, tzinfo=dt.UTC))
+    assert "built 2026-01-02 03:04 UTC" in made and "numpy " in made and "processor: " in made
+    page = landing.landing_markdown(records, "ci", provenance=made)
+    assert made in page and page.index(made) > page.index("## This build")
+    assert provenance.commit(Path("/")) == provenance.UNKNOWN  # not a repository
+    assert provenance.versions(("no-such-package-xyz",)) == {"no-such-package-xyz": "unknown"}

@@ -307,11 +307,7 @@ class Cantilever:
 
     def _assemble(self):
         """Reduced linear stiffness (as ``HexFlexModel._assemble``)."""
-        pb = self.fe.pb
-        pb.time_update(create_matrix=True)
-        pb.get_variables().init_state()
-        pb.update_materials()
-        return pb.get_evaluator().eval_tangent_matrix(np.zeros(self.n_dofs)).copy()
+        return fe.assemble_stiffness(self.fe.pb, self.n_dofs)
 
     def _end_load(self) -> np.ndarray:
         """Reduced consistent load vector of a uniform traction (0, 0, 1/A) on the end face:

@@ -122,11 +122,7 @@ class HexFlexModel:
 
     def _assemble(self):
         """Tangent (= stiffness) matrix of the Problem's own equations, reduced to free DOFs."""
-        pb = self.fe.pb
-        pb.time_update(create_matrix=True)
-        pb.get_variables().init_state()
-        pb.update_materials()
-        return pb.get_evaluator().eval_tangent_matrix(np.zeros(self.n_dofs)).copy()
+        return fe.assemble_stiffness(self.fe.pb, self.n_dofs)
 
     # public API -----------------------------------------------------------------------------
     @property

@@ -291,3 +291,12 @@ def edge_load(prob: FEProblem, k: int, force: np.ndarray, g: geo.HexFlexGeometry
     ok = dofs >= 0
     red[dofs[ok]] = full[ok]
     return red
+
+
+def assemble_stiffness(pb, n_dofs: int):
+    """The tangent (= linear stiffness) matrix of SfePy problem ``pb``'s own equations at zero
+    displacement, reduced to its ``n_dofs`` free DOFs (a copy)."""
+    pb.time_update(create_matrix=True)
+    pb.get_variables().init_state()
+    pb.update_materials()
+    return pb.get_evaluator().eval_tangent_matrix(np.zeros(n_dofs)).copy()

@@ -27,7 +27,7 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, records_dir
-from mechlib.pipeline import landing, verdicts
+from mechlib.pipeline import landing, provenance, verdicts
 from mechlib.pipeline.book import artefacts, methods, reportpage
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.records import load
@@ -191,7 +191,9 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
     link = Linker(copy_chapters(executed, Path(book) / "chapters"))
     rows = report_rows(records, chapters)
     _write(Path(book) / "report.md", report_markdown(rows, chapters, link))
-    landing.write_landing(records, Path(book) / "intro.md", profile, link=link)
+    landing.write_landing(
+        records, Path(book) / "intro.md", profile, link=link, provenance=provenance.text()
+    )
     generated = Path(book) / "generated"
     generated.mkdir(parents=True, exist_ok=True)
     methods.write_pages(generated, link)

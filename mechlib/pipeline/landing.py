@@ -306,7 +306,9 @@ def profile_text(records: verdicts.Records, profile: str) -> str:
     return "\n".join([head, "", *parts]) if parts else head.replace(" Its", " No")
 
 
-def landing_markdown(records: verdicts.Records, profile: str, link: Link = doc_link) -> str:
+def landing_markdown(
+    records: verdicts.Records, profile: str, link: Link = doc_link, provenance: str = ""
+) -> str:
     """The landing page's MyST text (see :func:`write_landing`)."""
     if not isinstance(profile, str) or not _PROFILE.match(profile):
         raise ValueError(f"profile must be a name of letters, digits, - or _, got {profile!r}")
@@ -336,13 +338,19 @@ def landing_markdown(records: verdicts.Records, profile: str, link: Link = doc_l
             "",
             profile_text(records, profile),
             "",
+            *([f"Made from:\n\n{provenance}", ""] if provenance else []),
             RERUN_TEXT,
         ]
     )
 
 
 def write_landing(
-    records: verdicts.Records | Path, out: Path, profile: str, *, link: Link = doc_link
+    records: verdicts.Records | Path,
+    out: Path,
+    profile: str,
+    *,
+    link: Link = doc_link,
+    provenance: str = "",
 ) -> None:
     """Write the landing page ``out`` from the records (only when its text changed).
 
@@ -357,6 +365,8 @@ def write_landing(
     link : callable, optional
         ``link(page, what, text)`` → a MyST link to the section of a chapter page (the book
         build's ``Linker``); default: a link to the page.
+    provenance : str, optional
+        Markdown lines saying what made the build (:func:`mechlib.pipeline.provenance.text`).
 
     Raises
     ------
@@ -365,7 +375,7 @@ def write_landing(
     FileNotFoundError
         For a records folder without records.
     """
-    text = landing_markdown(verdicts.load_records(records), profile, link)
+    text = landing_markdown(verdicts.load_records(records), profile, link, provenance)
     out = Path(out)
     if not out.exists() or out.read_text() != text:
         out.write_text(text)

@@ -22,6 +22,7 @@ from html.parser import HTMLParser
 from typing import Any
 
 from mechlib.pipeline import verdicts
+from mechlib.pipeline.book.browser import VOID_ELEMENTS
 
 #: Words a reader of the chapters should not meet: (what, pattern).
 JARGON: tuple[tuple[str, re.Pattern[str]], ...] = (
@@ -42,20 +43,6 @@ BARE_OUTPUT = re.compile(
     re.DOTALL,
 )
 _FENCE = re.compile(r"^\s*(`{3,}|~{3,}|:{3,})\s*(.*)$")
-_VOID = {
-    "area",
-    "base",
-    "br",
-    "col",
-    "embed",
-    "hr",
-    "img",
-    "input",
-    "link",
-    "meta",
-    "source",
-    "wbr",
-}
 #: HTML elements whose text is not chapter prose
 _NOT_PROSE = {"script", "style", "head", "nav", "header", "footer", "pre", "code", "svg"}
 _CONTEXT = 30
@@ -132,7 +119,7 @@ class _Splitter(HTMLParser):
         self.pending_title = False
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
-        if tag in _VOID:
+        if tag in VOID_ELEMENTS:
             return
         classes = (dict(attrs).get("class") or "").split()
         kind = ""
@@ -150,7 +137,7 @@ class _Splitter(HTMLParser):
         self.stack.append(kind)
 
     def handle_endtag(self, tag: str) -> None:
-        if tag in _VOID or not self.stack:
+        if tag in VOID_ELEMENTS or not self.stack:
             return
         kind = self.stack.pop()
         if kind == "admonition":

@@ -81,13 +81,13 @@ class _Dom(HTMLParser):
             self._math_has_container, self._math_text = False, []
         if tag == "mjx-container" and self._math_depth:
             self._math_has_container = True
-        if tag in _VOID:
+        if tag in VOID_ELEMENTS:
             return
         self._stack.append(is_math)
         self._math_depth += bool(self._math_depth) or is_math
 
     def handle_endtag(self, tag: str) -> None:
-        if tag in _VOID or not self._stack:
+        if tag in VOID_ELEMENTS or not self._stack:
             return
         was_math = self._stack.pop()
         if self._math_depth:
@@ -102,21 +102,24 @@ class _Dom(HTMLParser):
             self._math_text.append(data)
 
 
-_VOID = {
-    "area",
-    "base",
-    "br",
-    "col",
-    "embed",
-    "hr",
-    "img",
-    "input",
-    "link",
-    "meta",
-    "source",
-    "track",
-    "wbr",
-}
+#: HTML elements that have no end tag
+VOID_ELEMENTS = frozenset(
+    {
+        "area",
+        "base",
+        "br",
+        "col",
+        "embed",
+        "hr",
+        "img",
+        "input",
+        "link",
+        "meta",
+        "source",
+        "track",
+        "wbr",
+    }
+)
 
 
 def glue_roles(source: Path) -> int:
