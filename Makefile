@@ -113,10 +113,11 @@ test: $(STAMP)
 	$(REQUIRE_CI)
 	$(VENV)/bin/ruff check mechlib tests notebooks
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
-	$(MAKE) --no-print-directory unit
-	@# the determinism re-run (every notebook again, cold, into $(RERUN)) beside the first run:
-	@# the two share nothing, and the notebooks' FE work keeps about one core busy each
-	$(MAKE) --no-print-directory -j2 rerun notebooks
+	@# the unit tests, the notebooks and the determinism re-run (every notebook again, cold, into
+	@# $(RERUN)) side by side: they share nothing (the unit tests write only to temporary
+	@# folders), and on two cores the unit tests fill the gaps of the notebooks' two streams
+	@# (measured: 629 s for a clean-clone make test with the unit tests run first)
+	$(MAKE) --no-print-directory -j3 unit rerun notebooks
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory book
 	$(MAKE) --no-print-directory check-book
