@@ -114,7 +114,7 @@ def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
 
 
 def test_our_hypothesis_is_not_counted_among_the_thesis_claims(page: str) -> None:
-    assert "(our finding beyond the thesis). On a model with Eq 8's compliance" in page
+    assert "(our finding beyond the thesis). On our FE model, which has Eq 8's compliance" in page
     claims = pagecheck.count_table(page)
     # of the 10 claim rows, 4 hold by construction on our linear model and 2 are ours: Table 1's
     # levels, Figs 6-7's main effects, Table 4's uniformity and Figs 13-14's D&C claim remain

@@ -52,8 +52,11 @@ mechanism is calibrated leg by leg, with postures chosen by an observability ind
 Tables 6–8); the thesis claims that this beats identifying all parameters at once.
 
 The thesis used ANSYS; we use SfePy, Python and open libraries. Every number in this book is
-computed when the book is built and checked against a committed reference; the thesis's printed
-values are used only as the published values to compare against. The
+computed when the book is built (the default build's key numbers are checked against committed
+references; timings are not). The thesis's printed values enter in two ways only: as published
+values to compare against, and as inputs the report names — our FE model's dimensions are fitted
+to Eq 8, and Tables 2 and 4's force designs are run as printed — so agreement that follows from
+them is counted as *consistent by construction*, not as reproduction. The
 [reproduction report](report.md) lists every compared quantity with its published value, ours
 and a verdict.
 """
@@ -140,14 +143,17 @@ FINDINGS: tuple[Finding, ...] = (
         ("published_doe", "Eq 8"),
     ),
     Finding(
-        "Table 5 comes from a linear analysis (our reading).",
-        "On a model with Eq 8's compliance the linear meta-model misses the geometrically "
-        "non-linear FE by up to {nl:.4g} % in {runs:.0f} runs at ±1 N, while Table 5's largest "
-        "published error is "
-        "{pub:.2g} %: the published errors are those of a linear FE analysis.",
+        "Table 5 looks like a linear analysis (our reading, one geometry).",
+        "On our FE model, which has Eq 8's compliance, the linear meta-model misses the "
+        "geometrically non-linear solution by {nl_lo:.2g} to {nl_hi:.3g} % of each pose "
+        "component's range over {runs:.0f} random runs at ±1 N; Table 5's published errors are "
+        "at most {pub:.1e} % of the ranges. We read the gap as evidence that the thesis's "
+        "validation runs were linear analyses; it rests on one member of the family of parts "
+        "with Eq 8's compliance, on one mesh.",
         {
-            "nl": ("virtual_experiments", "table5.nonlinear.max_rel_pct", "max"),
-            "pub": ("virtual_experiments", "table5.published_worst_rel_pct", None),
+            "nl_lo": ("virtual_experiments", "table5.nonlinear.max_range_pct", "min"),
+            "nl_hi": ("virtual_experiments", "table5.nonlinear.max_range_pct", "max"),
+            "pub": ("virtual_experiments", "table5.published_maxabs_over_range_pct", "max"),
             "runs": ("virtual_experiments", "table5.nonlinear.converged_runs", None),
         },
         ("virtual_experiments", "Table 5", "(ours) the published errors imply"),
@@ -156,12 +162,12 @@ FINDINGS: tuple[Finding, ...] = (
         holds=True,
     ),
     Finding(
-        "Divide and conquer does not beat the traditional identification in workspace error.",
+        "Divide and conquer does not give the better calibration in the thesis's setup.",
         "With the thesis's pose counts the 5R calibrated leg by leg reaches a workspace RMS error "
         "of {dc:.1f} µm against {trad:.1f} µm for the traditional method, better in only "
-        "{share:.0%} of the paired trials. With Table 8's measurement budget the workspace errors "
-        "tie (better in {share_m:.0%}, p = {p_m:.2g}), while its parameter errors are lower in "
-        "{pshare_m:.0%} of the trials (p = {pp_m:.1e}).",
+        "{share:.0%} of the paired trials. With Table 8's measurement budget it is better in "
+        "{share_m:.0%} of the trials in workspace error (p = {p_m:.2g}) and in {pshare_m:.0%} in "
+        "parameter error (p = {pp_m:.1e}).",
         {
             "dc": ("fivebar_identification", "mc.rms_mean_um", 0),
             "trad": ("fivebar_identification", "mc.rms_mean_um", 1),
