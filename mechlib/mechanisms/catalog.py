@@ -18,6 +18,8 @@ from mechlib.mechanisms import fivebar5r, gough_stewart, rrr3
 from mechlib.params import check_choice, check_float, check_int
 
 NAMES = ("5R", "3-RRR", "6-UPS")
+#: Share of the 5R's MIW radius inside which its candidate poses lie (the thesis's workspace).
+FIVEBAR_FRACTION = 0.8
 
 
 @dataclass(frozen=True)
@@ -47,7 +49,7 @@ def build(
     n_candidates: int,
     n_random_grid: int,
     slice_points: int,
-    fivebar_fraction: float = 0.8,
+    fivebar_fraction: float = FIVEBAR_FRACTION,
     fivebar_spacing: float = 0.04,
 ) -> Built:
     """Assemble the study of mechanism ``name``.
