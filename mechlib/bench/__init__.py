@@ -18,6 +18,9 @@
   Cholesky), one residual and one back-substitution; and the Newton–Krylov alternative: GMRES
   iterations, preconditioned by the factorised linear stiffness (a whole solve on the first run:
   Newton corrections, GMRES iterations, time).
+- Reusing one factorised tangent across runs (:mod:`mechlib.bench.reuse`): chord iterations
+  with the tangent of a neighbouring equilibrium, at growing distances in force space, and the
+  nearest-neighbour distances of random designs.
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
@@ -133,6 +136,7 @@ SECTIONS: tuple[str, ...] = (
     "orderings",
     "nonlinear",
     "chapter",
+    "reuse",
     "calibration",
 )
 
@@ -162,6 +166,10 @@ def main(argv: list[str] | None = None) -> int:
         nlb.print_nonlinear(NEWTON_TOL)
     if "chapter" in only:
         nlb.print_chapter()
+    if "reuse" in only:
+        from mechlib.bench.reuse import print_reuse
+
+        print_reuse()
     if "calibration" in only:
         _print_calibration()
     return 0

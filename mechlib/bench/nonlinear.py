@@ -214,6 +214,7 @@ def nonlinear_run_counts() -> dict[str, int]:
 
 def chapter_timings() -> dict[str, float | str]:
     """Cold wall times of the DOE chapter's FE work (no cache), measured and projected."""
+    from mechlib.hexflex import executors
     from mechlib.hexflex import experiments as ex
 
     counts = nonlinear_run_counts()
@@ -237,7 +238,7 @@ def chapter_timings() -> dict[str, float | str]:
             spec, validation[:N_NONLINEAR_POOL], kind="nonlinear", executor=pool, progress=False
         )
     t4 = time.perf_counter()
-    with ex.worker_pool(2) as pool:
+    with executors.worker_pool(2) as pool:
         # start-up first (each worker builds the model and its tangent once), then the runs
         list(pool.map(_warm_worker, [spec, spec]))
         t5 = time.perf_counter()
@@ -331,7 +332,7 @@ def print_chapter() -> None:
     )
     print(
         f"  {N_NONLINEAR_POOL} runs on 2 processes, one BLAS thread per worker "
-        f"(experiments.worker_pool): start-up (each worker builds its non-linear solver; the "
+        f"(executors.worker_pool): start-up (each worker builds its non-linear solver; the "
         f"model comes with the fork when this process holds it, else it is built too) "
         f"{ch['pool_startup_s']:.1f} s, then {ch['pool_per_run_s']:.1f} s per run (wall); a plain "
         f"pool, a BLAS thread per core in each worker: {ch['plain_pool_per_run_s']:.1f} s per run "

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex.executors import InProcessExecutor
 from mechlib.hexflex.finite_pose import CONVENTIONS, finite_poses
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.hexflex.model import (
@@ -79,52 +80,6 @@ class ModelSpec:
 def model_for(spec: ModelSpec) -> HexFlexModel:
     """The model of ``spec``, built once per process."""
     return spec.build()
-
-
-def _limit_blas(threads: int) -> None:
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(limits=threads, user_api="blas")  # for the life of the worker
-
-
-def worker_pool(workers: int) -> cf.ProcessPoolExecutor:
-    """A process pool for FE experiments whose workers share the cores' BLAS threads.
-
-    Each worker's BLAS (the linear model's SuperLU factorisation and SfePy's assembly run
-    through it) gets ``cores // workers`` threads, at least one, instead of every core:
-    ``workers`` processes that each start a thread per core oversubscribe the machine. (The
-    non-linear solve's own kernels run on one thread in any case.)
-
-    Parameters
-    ----------
-    workers : int
-        Worker processes, 1 .. 64.
-    """
-    import os
-
-    workers = check_int("workers", workers, low=1, high=64)
-    threads = max(1, (os.cpu_count() or 1) // workers)
-    return cf.ProcessPoolExecutor(max_workers=workers, initializer=_limit_blas, initargs=(threads,))
-
-
-class InProcessExecutor(cf.Executor):
-    """Runs each submitted call at once in the calling thread (the default executor)."""
-
-    def submit(self, fn, /, *args, **kwargs):
-        """Call ``fn(*args, **kwargs)`` now; its result or ``Exception`` goes into the future.
-
-        ``KeyboardInterrupt``, ``SystemExit`` and the other ``BaseException`` subclasses that are
-        not an ``Exception`` are not caught: they propagate at once, so Ctrl-C stops the whole
-        run instead of failing one task and going on with the next.
-        """
-        fut: cf.Future = cf.Future()
-        try:
-            result = fn(*args, **kwargs)
-        except Exception as err:  # reported through the future, as any executor does
-            fut.set_exception(err)
-        else:
-            fut.set_result(result)
-        return fut
 
 
 class ExperimentError(RuntimeError):

@@ -296,7 +296,7 @@ class NonlinearSolver:
             )
         norm = float(np.linalg.norm(res))
         solve, fresh, used, facts = None, False, 0, 0
-        mixer = _Anderson(ANDERSON_DEPTH if method == "modified" else 0)
+        mixer = Anderson(ANDERSON_DEPTH if method == "modified" else 0)
         while norm > tol * scale:
             if used == max_iterations:
                 raise ConvergenceError(
@@ -346,8 +346,13 @@ class NonlinearSolver:
         return u, norm, used, facts
 
 
-class _Anderson:
+class Anderson:
     """Anderson mixing of the corrections of one factorised tangent (depth 0: plain steps).
+
+    Parameters
+    ----------
+    depth : int
+        How many of the last iterate and correction differences the mixing fits (0: none).
 
     For iterates x_k with corrections f_k (``-K⁻¹ r(x_k)``) the step is
     ``f_k − (ΔX + ΔF) γ`` with γ the least-squares fit of f_k by the last ``depth`` differences
