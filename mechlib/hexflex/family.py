@@ -1,0 +1,119 @@
+"""Other members of the family of HexFlex layouts that have Eq 8's compliance.
+
+Eq 8's four independent magnitudes fix only about four combinations of the planform's nine
+dimensions (the identification page), so a whole family of parts has Eq 8's compliance. A member
+is picked here by fixing the plate thickness and re-identifying the in-plane flexure dimensions:
+first on the reduced beam model (:func:`mechlib.hexflex.frame.prefit`, milliseconds), then on the
+FE model (:func:`mechlib.hexflex.identify.identify`, one FE model per step). The beam model alone
+also tells which thicknesses cannot reach Eq 8 within the layout's bounds at all
+(:func:`frame_reach`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechlib.hexflex import frame
+from mechlib.hexflex import identify as ident
+from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
+from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, compliance_maker, model_maker
+from mechlib.params import check_float
+
+#: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
+#: radius of the beams (four magnitudes, five dimensions: the minimum-norm step picks one member).
+FAMILY_FREE: tuple[str, ...] = (
+    "beam_width",
+    "beam_length",
+    "radial_length",
+    "radial_width",
+    "beam_radius",
+)
+
+
+@dataclass(frozen=True)
+class Member:
+    """One identified member: its geometry, its FE magnitudes (4,) in the order of
+    :data:`mechlib.hexflex.identify.TARGET_LABELS`, their worst relative error [%] against the
+    target, and the FE models the identification built."""
+
+    geometry: HexFlexGeometry
+    achieved: np.ndarray
+    worst_pct: float
+    evaluations: int
+
+
+def check_thickness(thickness: float) -> float:
+    """A plate thickness [mm] within :data:`DIMENSION_BOUNDS`."""
+    lo, hi = DIMENSION_BOUNDS["thickness"]
+    return check_float("thickness [mm]", thickness, low=lo, high=hi)
+
+
+def frame_reach(
+    target: Sequence[float],
+    start: HexFlexGeometry,
+    thicknesses: Sequence[float],
+    free: Sequence[str] = FAMILY_FREE,
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+) -> np.ndarray:
+    """How close the beam model gets to ``target`` at each fixed thickness: the worst relative
+    error [%] of the four magnitudes after :func:`mechlib.hexflex.frame.prefit` of ``free``
+    within the layout's bounds, shape (len(thicknesses),). A thickness whose error stays large
+    has no member of the family with this layout."""
+    out = []
+    for t in thicknesses:
+        g = start.replace(thickness=check_thickness(t))
+        _, achieved = frame.prefit(target, g, free, young, poisson)
+        out.append(100 * np.abs(np.asarray(achieved) / np.asarray(target) - 1).max())
+    return np.array(out)
+
+
+def identify_member(
+    target: Sequence[float],
+    start: HexFlexGeometry,
+    thickness: float,
+    mesh_fraction: float,
+    free: Sequence[str] = FAMILY_FREE,
+    max_evaluations: int = 6,
+    tol: float = 1e-3,
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+) -> Member:
+    """The member of the family with plate ``thickness`` [mm]: ``free`` re-identified so that
+    the Q2 FE model (flexure elements ``mesh_fraction`` of the narrowest width) meets ``target``.
+
+    Parameters
+    ----------
+    target : sequence of 4 floats
+        The magnitudes of :data:`mechlib.hexflex.identify.TARGET_LABELS` (Eq 8's).
+    start : HexFlexGeometry
+        Where the search starts; its other dimensions are kept.
+    thickness : float
+        The member's plate thickness [mm], within the layout's bounds.
+    mesh_fraction : float
+        As for :func:`mechlib.hexflex.model.model_maker`.
+    free, max_evaluations, tol
+        As for :func:`mechlib.hexflex.identify.identify`.
+
+    Raises
+    ------
+    ValueError
+        On a thickness out of bounds, or bad identification settings.
+    """
+    g = start.replace(thickness=check_thickness(thickness))
+    prefit, _ = frame.prefit(target, g, free, young, poisson)
+    make = model_maker(young=young, poisson=poisson, element="q2", mesh_fraction=mesh_fraction)
+    fit = ident.identify(
+        prefit,
+        target,
+        free,
+        compliance_maker(make),
+        frame.compliance_maker(young, poisson),
+        max_evaluations=max_evaluations,
+        tol=tol,
+    )
+    worst = float(100 * np.abs(np.asarray(fit.achieved) / np.asarray(target) - 1).max())
+    return Member(fit.geometry, np.asarray(fit.achieved), worst, fit.n_evaluations)
