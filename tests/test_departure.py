@@ -37,3 +37,31 @@ def test_parity_summary_is_a_share_of_the_scale():
 def test_parity_split_refuses_mismatched_shapes():
     with pytest.raises(ValueError, match="minus"):
         parity_split(np.zeros((3, 6)), np.zeros((2, 6)), np.zeros((3, 6)))
+
+
+def test_relative_change_is_per_column_and_refuses_a_zero_reference():
+    from mechlib.hexflex.departure import relative_change
+
+    ref = np.array([[1.0, -2.0], [0.5, 4.0]])
+    out = relative_change(ref + np.array([[0.01, 0.0], [0.0, -0.2]]), ref)
+    np.testing.assert_allclose(out, [1.0, 5.0])
+    with pytest.raises(ValueError, match="non-zero"):
+        relative_change(ref, np.zeros_like(ref))
+
+
+def test_linear_poses_at_the_models_quadrature_are_the_linear_models():
+    from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
+
+    from mechlib.hexflex.departure import linear_poses
+    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.nonlinear import NonlinearSolver
+
+    model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
+    forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.5, -0.4]])
+    np.testing.assert_allclose(
+        linear_poses(NonlinearSolver(model), forces), model.poses(forces), rtol=1e-12
+    )
+    # with another quadrature the linear problem is factorised anew: close, not equal
+    other = linear_poses(NonlinearSolver(model, quad_order=6), forces)
+    change = np.abs(other - model.poses(forces)).max() / np.abs(model.poses(forces)).max()
+    assert 1e-12 < change < 1e-2

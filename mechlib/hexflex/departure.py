@@ -8,14 +8,20 @@ finite rotation (foreshortening of bent flexures, the coupling of tilt and lift)
 part, (d(f) − d(−f)) / 2 = C(f) + (quintic …), by the third-order ones — the stiffening (or
 softening) of flexures that stretch as they bend. :func:`parity_split` computes both from runs at
 ±f; :func:`parity_summary` states them, like Table 5's errors, as shares of each component's
-range.
+range. :func:`linear_poses` gives the linear counterpart of a non-linear solve on the same mesh
+and quadrature, and :func:`relative_change` compares a quantity between two discretisations.
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from mechlib.params import check_matrix
+
+if TYPE_CHECKING:
+    from mechlib.hexflex.nonlinear import NonlinearSolver
 
 
 def parity_split(plus: object, minus: object, linear_plus: object) -> dict[str, np.ndarray]:
@@ -73,3 +79,38 @@ def parity_summary(split: dict[str, np.ndarray], scale: object) -> dict[str, np.
     return {
         name: 100 * np.abs(split[name]).max(axis=0) / s for name in ("even", "odd", "departure")
     }
+
+
+def linear_poses(solver: NonlinearSolver, forces: object) -> np.ndarray:
+    """Stage poses (n, 6) [µm, µrad] of the *linear* problem on the solver's mesh and with its
+    quadrature: the loads solved with its tangent at u = 0 (the model's own factorisation when
+    the quadrature is the model's), so that a departure ψ_nl − ψ_lin compares like with like.
+
+    Parameters
+    ----------
+    solver : NonlinearSolver
+        The non-linear solver whose linear counterpart is wanted.
+    forces : array_like (n, 6)
+        Actuator forces [N] within the model's bound.
+    """
+    model = solver.model
+    f = model.check_forces(forces)
+    solve = solver.factorised_tangent(np.zeros(model.n_dofs))
+    loads = model.load_vectors() @ f.T
+    return np.array([model.pose_of(solve(loads[:, k])) for k in range(len(f))])
+
+
+def relative_change(values: object, reference: object) -> np.ndarray:
+    """max over runs |values − reference| / max over runs |reference|, per column [%].
+
+    Raises
+    ------
+    ValueError
+        If the shapes differ, or a reference column is all zero.
+    """
+    v = check_matrix("values", values)
+    r = check_matrix("reference", reference, shape=v.shape)
+    top = np.abs(r).max(axis=0)
+    if np.any(top == 0):
+        raise ValueError("reference must have a non-zero value in every column")
+    return 100 * np.abs(v - r).max(axis=0) / top

@@ -34,6 +34,7 @@ from mechlib.hexflex.model import (
     check_forces,
 )
 from mechlib.hexflex.nonlinear import NonlinearSolver
+from mechlib.hexflex.problem import QUAD_ORDER
 from mechlib.hexflex.sources import model_modules
 from mechlib.params import check_choice, check_int
 
@@ -59,6 +60,12 @@ class ModelSpec:
     poisson: float = AL7075_POISSON
     mesh_size: float | None = None
     element: str = "q2"
+    #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
+    #: linear model always uses :data:`mechlib.hexflex.problem.QUAD_ORDER`
+    quad_order: int = QUAD_ORDER
+
+    def __post_init__(self) -> None:
+        check_int("quad_order", self.quad_order, low=2, high=10)
 
     def key(self) -> str:
         """Stable text of the specification (cache key ingredient)."""
@@ -121,7 +128,7 @@ class FailedRun:
 def solver_for(spec: ModelSpec) -> NonlinearSolver:
     """The non-linear solver of ``spec``'s model, built once per process (on
     :func:`model_for`'s model)."""
-    return NonlinearSolver(model_for(spec))
+    return NonlinearSolver(model_for(spec), quad_order=spec.quad_order)
 
 
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:

@@ -30,6 +30,7 @@ import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex.factor import SOLVERS, PatternCholesky, factorise
+from mechlib.hexflex.problem import QUAD_ORDER
 from mechlib.hexflex.sfepy_tl import register_svk_term, tl_evaluator
 from mechlib.hexflex.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
@@ -108,10 +109,17 @@ class NonlinearSolver:
         How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
         (:class:`mechlib.hexflex.factor.PatternCholesky`, default; an indefinite tangent falls
         back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
+    quad_order : int
+        Quadrature order of the batched tangent and residual (:class:`SVKTangent`'s ``order``;
+        the default is the linear model's); another order needs ``tangent="batched"``.
     """
 
     def __init__(
-        self, model: HexFlexModel, tangent: str = "batched", factorisation: str = "cholmod"
+        self,
+        model: HexFlexModel,
+        tangent: str = "batched",
+        factorisation: str = "cholmod",
+        quad_order: int = QUAD_ORDER,
     ) -> None:
         if model.element != "q2":
             raise ValueError(
@@ -125,8 +133,12 @@ class NonlinearSolver:
             )
         self.model = model
         self.tangent = check_choice("tangent", tangent, TANGENTS)
+        if self.tangent != "batched" and quad_order != QUAD_ORDER:  # SfePy's term: the model's
+            raise ValueError(
+                f"quad_order must be {QUAD_ORDER} with tangent='sfepy', got {quad_order!r}"
+            )
         #: the batched tangent and residual (``None`` with ``tangent="sfepy"``)
-        self.batched = SVKTangent(model) if self.tangent == "batched" else None
+        self.batched = SVKTangent(model, order=quad_order) if self.tangent == "batched" else None
         self.factorisation = check_choice("factorisation", factorisation, SOLVERS)
         #: the Cholesky of the tangent's pattern (``None`` until a CHOLMOD factorisation is
         #: needed with SfePy's tangent, and always with SuperLU); its ``fallbacks`` count the
@@ -173,7 +185,8 @@ class NonlinearSolver:
         With CHOLMOD the factor is kept in one object: a later call invalidates the function
         returned before (it then raises ``RuntimeError``).
         """
-        if not u.any():  # the tangent at u = 0 is the linear stiffness, already factorised
+        same_rule = self.batched is None or self.batched.order == QUAD_ORDER
+        if not u.any() and same_rule:  # at u = 0: the linear stiffness, already factorised
             return self.model.back_substitute
         if self.batched is not None and self.cholesky is not None:  # the default
             return self.cholesky.factorise_upper(self.batched.upper_values(u))

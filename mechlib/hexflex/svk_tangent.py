@@ -52,11 +52,15 @@ class SVKTangent:
         A model with ``element="q2"``.
     chunk : int, optional
         Elements per batch of matrix products, in [1, 5000] (temporaries ∝ ``chunk``).
+    order : int, optional
+        Quadrature order (SfePy's, on the hexahedron), in [2, 10]: the default
+        :data:`mechlib.hexflex.problem.QUAD_ORDER` (3 × 3 × 3 Gauss points) is the linear model's;
+        a higher one checks the quadrature error of the non-linear integrands.
 
     Raises
     ------
     ValueError
-        If the model is not Q2 or ``chunk`` is out of range.
+        If the model is not Q2, or ``chunk`` or ``order`` is out of range.
 
     Notes
     -----
@@ -65,7 +69,7 @@ class SVKTangent:
     two indices and a buffer of half that size each, ≈ 400 MB): not thread-safe.
     """
 
-    def __init__(self, model: HexFlexModel, chunk: int = CHUNK) -> None:
+    def __init__(self, model: HexFlexModel, chunk: int = CHUNK, order: int = fe.QUAD_ORDER) -> None:
         if model.element != "q2":
             raise ValueError(
                 f"element must be 'q2' for the TL Saint Venant–Kirchhoff tangent (SVKTangent), "
@@ -74,7 +78,8 @@ class SVKTangent:
         from sfepy.mechanics.matcoefs import stiffness_from_youngpoisson
 
         p = model.fe
-        vg, _ = p.field.get_mapping(p.omega, fe.integral(), "cell")
+        self.order = check_int("order", order, low=2, high=10)
+        vg, _ = p.field.get_mapping(p.omega, fe.integral(self.order), "cell")
         self._grad = np.array(vg.bfg, dtype=float)  # (n_el, n_qp, 3, n_ep): dN/dX
         self._weight = np.array(vg.det[..., 0, 0], dtype=float)  # (n_el, n_qp): w · det J
         elastic = np.asarray(stiffness_from_youngpoisson(3, model.young, model.poisson))

@@ -20,6 +20,7 @@ CHAPTERS: tuple[str, ...] = (
     "published_doe",
     "hexflex_model",
     "virtual_experiments",
+    "nonlinear_family",
     "fivebar_identification",
     "beyond_5r",
 )
@@ -31,6 +32,13 @@ CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
     "virtual_experiments": {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
+    },
+    # the family page solves the DOE chapter's validation draw on other members (and reuses the
+    # identified member's runs from the FE cache, so it runs after that chapter)
+    "nonlinear_family": {
+        "geometry": ("hexflex_model", "geometry.*"),
+        "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
+        "seed": ("virtual_experiments", "parameters.seed"),
     },
 }
 
