@@ -12,7 +12,9 @@ from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib import ticker
 from matplotlib.axes import Axes
+from matplotlib.axis import Axis
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
@@ -106,6 +108,19 @@ def figure_and_panels(
 def panel_grid(n: int, columns: int = 3) -> tuple[int, int]:
     """Rows and columns of a grid of ``n`` panels at most ``columns`` wide."""
     return (n + columns - 1) // columns, min(n, columns)
+
+
+#: at most this many ticks on a value axis of a small panel, so that long labels do not collide
+VALUE_TICKS = 4
+
+
+def readable_value_axis(axis: Axis) -> None:
+    """At most :data:`VALUE_TICKS` ticks, and large or small magnitudes as a power of ten shown
+    once at the axis's end (``×10⁵``) instead of long labels that collide."""
+    axis.set_major_locator(ticker.MaxNLocator(VALUE_TICKS))
+    formatter = ticker.ScalarFormatter(useMathText=True)
+    formatter.set_powerlimits((-3, 4))
+    axis.set_major_formatter(formatter)
 
 
 def panel_label(j: int) -> str:
