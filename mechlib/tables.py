@@ -27,7 +27,23 @@ def label(name: str, unit: str = "") -> str:
 
 
 def labels(names: Sequence[str], units: Sequence[str] | str = "") -> list[str]:
-    """:func:`label` over names, with one unit each or one unit for all."""
+    """:func:`label` over names.
+
+    Parameters
+    ----------
+    names : sequence of str
+    units : sequence of str or str
+        One unit per name ("" for none), or one unit for all.
+
+    Returns
+    -------
+    list of str
+
+    Raises
+    ------
+    ValueError
+        When ``units`` is a sequence of another length than ``names``.
+    """
     units = [units] * len(names) if isinstance(units, str) else list(units)
     if len(units) != len(names):
         raise ValueError(f"{len(names)} names need as many units, got {len(units)}")
@@ -36,7 +52,26 @@ def labels(names: Sequence[str], units: Sequence[str] | str = "") -> list[str]:
 
 def number(value: float, digits: int = DIGITS, zero_below: float = 0.0) -> str:
     """One cell: ``digits`` significant digits, ``"0"`` at or below ``zero_below`` in magnitude,
-    a true minus sign, no exponent between 1e-4 and 1e6."""
+    a true minus sign, no exponent between 1e-4 and 1e6.
+
+    Parameters
+    ----------
+    value : float
+    digits : int
+        Significant digits, 1 .. 17.
+    zero_below : float
+        Magnitudes up to this are shown as ``"0"`` (round-off of an exact zero), at least 0.
+
+    Returns
+    -------
+    str
+        E.g. ``"57.53"``, ``"−28.76"``, ``"39313"``, ``"1.19e−08"``.
+
+    Raises
+    ------
+    ValueError
+        For ``digits`` or ``zero_below`` out of range.
+    """
     digits = check_int("digits", digits, low=1, high=17)
     zero_below = check_float("zero_below", zero_below, low=0.0)
     value = float(value)
@@ -55,9 +90,26 @@ def formatted(
     axis: int | None = 0,
     zero_below: object = 0.0,
 ) -> np.ndarray:
-    """An array of cell texts: :func:`number` of each value, zero below ``rel_zero`` times the
-    largest magnitude along ``axis`` (0: per column, None: of the whole array) or below the
-    absolute ``zero_below`` (broadcast to the values' shape), whichever is larger."""
+    """An array of cell texts: :func:`number` of each value.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        One or two dimensions.
+    digits : int
+        Significant digits.
+    rel_zero : float
+        A value at most this share of the largest magnitude along ``axis`` (0: per column,
+        None: of the whole array) is shown as 0, in [0, 1].
+    axis : int or None
+    zero_below : array_like
+        Absolute magnitudes at or below which a value is shown as 0, broadcast to the values'
+        shape; the larger of the two floors applies.
+
+    Returns
+    -------
+    numpy.ndarray of str, two-dimensional
+    """
     arr = np.atleast_2d(np.asarray(values, dtype=float))
     rel_zero = check_float("rel_zero", rel_zero, low=0.0, high=1.0)
     scale = np.abs(arr).max(axis=axis, keepdims=True) if arr.size else np.zeros((1, 1))
@@ -81,7 +133,23 @@ def table(
     axis: int | None = 0,
     index_name: str | None = None,
 ) -> pd.DataFrame:
-    """A table of formatted values (see :func:`formatted`) with the given headers."""
+    """A table of formatted values with the given headers.
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (len(index), len(columns))
+    index, columns : sequence of str
+        Row and column headers (with units, see :func:`labels`).
+    digits, rel_zero, axis
+        As in :func:`formatted`.
+    index_name : str, optional
+        The header of the row labels.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Text cells.
+    """
     cells = formatted(values, digits, rel_zero, axis)
     frame = pd.DataFrame(cells, index=list(index), columns=list(columns))
     frame.index.name = index_name
@@ -173,9 +241,24 @@ def stacked(
     digits: int | Mapping[str, int] = DIGITS,
     rel_zero: float | Mapping[str, float] = 0.0,
 ) -> pd.DataFrame:
-    """Matrices one above the other, each under its source's name (e.g. Eq 8 over our S_T),
-    with ``digits`` significant digits (or per source), zero below ``rel_zero`` times each
-    matrix's largest magnitude."""
+    """Matrices one above the other, each under its source's name (e.g. Eq 8 over our S_T).
+
+    Parameters
+    ----------
+    sources : mapping of str to numpy.ndarray
+        Source name → matrix of shape (len(index), len(columns)).
+    index, columns : sequence of str
+        Row headers (with units) and column headers.
+    digits : int or mapping of str to int
+        Significant digits, or per source.
+    rel_zero : float or mapping of str to float
+        Values at most this share of their matrix's largest magnitude are shown as 0.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Rows ``(source, row header)``.
+    """
     zeros = rel_zero if isinstance(rel_zero, Mapping) else dict.fromkeys(sources, rel_zero)
     places = _per_source(digits, sources)
     parts = {
@@ -239,6 +322,11 @@ def latex_matrix_equation(
         Significant digits of each entry.
     rhs : str
         LaTeX after the matrix (e.g. a unit), optional.
+
+    Returns
+    -------
+    str
+        LaTeX for a display formula (no ``$$``), rows separated by ``\\cr``.
     """
     arr = np.atleast_2d(np.asarray(matrix, dtype=float))
     # rows end with \cr, not \\: Sphinx wraps a display formula holding \\ in a split

@@ -27,6 +27,7 @@ from mechlib.plotting.style import (
     figure_and_axes,
     figure_and_panels,
     panel_label,
+    unit_ticks,
 )
 
 #: Strategy colours of the Monte Carlo figures, in the order the strategies are given.
@@ -174,15 +175,6 @@ def fivebar_postures(
     handles, names = panels[0].get_legend_handles_labels()
     fig.legend(handles, names, loc="outside lower center", ncol=len(names), fontsize=8)
     return fig
-
-
-def unit_ticks(names: Sequence[str], units: Sequence[str] | None) -> list[str]:
-    """Tick labels with each parameter's unit (``"l1 [m]"``; a gain's empty unit: no bracket)."""
-    if units is None:
-        return list(names)
-    if len(units) != len(names):
-        raise ValueError(f"{len(names)} parameter names need as many units, got {len(units)}")
-    return [f"{n} [{u}]" if u else n for n, u in zip(names, units, strict=True)]
 
 
 #: the value axis of per-parameter errors: each parameter keeps its own unit (tick label)

@@ -116,7 +116,13 @@ VALUE_TICKS = 4
 
 def readable_value_axis(axis: Axis) -> None:
     """At most :data:`VALUE_TICKS` ticks, and large or small magnitudes as a power of ten shown
-    once at the axis's end (``×10⁵``) instead of long labels that collide."""
+    once at the axis's end (``×10⁵``) instead of long labels that collide.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        E.g. ``ax.xaxis``.
+    """
     axis.set_major_locator(ticker.MaxNLocator(VALUE_TICKS))
     formatter = ticker.ScalarFormatter(useMathText=True)
     formatter.set_powerlimits((-3, 4))
@@ -172,3 +178,29 @@ def draw_quads(
 def circle(ax: Axes, center: Sequence[float], radius: float, **kw) -> None:
     """An unfilled circle (e.g. the MIW) in data coordinates."""
     ax.add_patch(plt.Circle(tuple(center), radius, fill=False, **kw))
+
+
+def unit_ticks(names: Sequence[str], units: Sequence[str] | None) -> list[str]:
+    """Tick labels with each parameter's unit.
+
+    Parameters
+    ----------
+    names : sequence of str
+    units : sequence of str or None
+        One unit per name ("" for a unitless gain); None keeps the names.
+
+    Returns
+    -------
+    list of str
+        ``["l1 [m]", "k1", …]``.
+
+    Raises
+    ------
+    ValueError
+        When ``units`` has another length than ``names``.
+    """
+    if units is None:
+        return list(names)
+    if len(units) != len(names):
+        raise ValueError(f"{len(names)} parameter names need as many units, got {len(units)}")
+    return [f"{n} [{u}]" if u else n for n, u in zip(names, units, strict=True)]
