@@ -19,6 +19,8 @@ CAT_CONSTRUCTION = "consistent by construction"
 CAT_DIVERGES = "diverges"
 #: the published values contradict each other (a copy error, two tables that cannot both hold)
 CAT_INCONSISTENT = "inconsistency inside the thesis"
+#: published values set against each other agree (no computation of ours is tested by it)
+CAT_CONSISTENT_THESIS = "consistent inside the thesis"
 #: a published value that none of our computations reaches; the row says what was tried
 CAT_NOT_REPRODUCED = "not reproduced"
 CAT_SUPPORTED = "thesis claim supported"
@@ -28,23 +30,29 @@ CAT_MIXED = "thesis claim mixed"
 #: a hypothesis or result of ours: never counted with the thesis's claims or values
 CAT_OURS = "our finding beyond the thesis"
 CAT_COMPUTED = "computed (no published value)"
+#: a figure of the thesis's method redrawn from its text: nothing computed, nothing to compare
+CAT_REDRAWN = "redrawn from the thesis's text (nothing to compare)"
 #: every category, in the order the report and the landing page list them
 CATEGORIES = (
     CAT_REPRODUCED,
     CAT_CONSTRUCTION,
     CAT_DIVERGES,
     CAT_INCONSISTENT,
+    CAT_CONSISTENT_THESIS,
     CAT_NOT_REPRODUCED,
     CAT_SUPPORTED,
     CAT_NOT_SUPPORTED,
     CAT_MIXED,
     CAT_OURS,
     CAT_COMPUTED,
+    CAT_REDRAWN,
 )
 CLAIM_CATEGORIES = (CAT_SUPPORTED, CAT_NOT_SUPPORTED, CAT_MIXED)
 
 #: what a comparison's agreement rests on: an independent computation (default), a fit to the
 #: published value or an input taken from it, or two published values set against each other
+#: (``BASIS_THESIS``: its agreement is "consistent inside the thesis", its divergence an
+#: "inconsistency inside the thesis"; the value's name is kept from the records)
 BASIS_INDEPENDENT = "independent"
 BASIS_CONSTRUCTION = "construction"
 BASIS_THESIS = "thesis-inconsistency"
@@ -140,13 +148,16 @@ def comparison_category(
     """The category of a comparison from whether all values agree and what it declares.
 
     A hypothesis of ours is :data:`CAT_OURS` whatever the numbers; agreement is
-    :data:`CAT_CONSTRUCTION` when it holds by construction, else :data:`CAT_REPRODUCED`; a
-    divergence is :data:`CAT_INCONSISTENT` when published values are set against each other,
-    else :data:`CAT_DIVERGES` (also when agreement by construction fails).
+    :data:`CAT_CONSTRUCTION` when it holds by construction, :data:`CAT_CONSISTENT_THESIS` when
+    published values are set against each other, else :data:`CAT_REPRODUCED`; a divergence is
+    :data:`CAT_INCONSISTENT` when published values are set against each other, else
+    :data:`CAT_DIVERGES` (also when agreement by construction fails).
     """
     check_kinds(basis, source)
     if source == SOURCE_OURS:
         return CAT_OURS
     if agree:
-        return CAT_CONSTRUCTION if basis == BASIS_CONSTRUCTION else CAT_REPRODUCED
+        return {BASIS_CONSTRUCTION: CAT_CONSTRUCTION, BASIS_THESIS: CAT_CONSISTENT_THESIS}.get(
+            basis, CAT_REPRODUCED
+        )
     return CAT_INCONSISTENT if basis == BASIS_THESIS else CAT_DIVERGES

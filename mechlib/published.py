@@ -270,6 +270,11 @@ _TABLE7 = """
  3.1416  3.1418
 """
 TABLE7 = parse_printed(_TABLE7)
+#: Table 7's unit column ("" where the thesis prints none: the joint gains k are unitless)
+TABLE7_UNITS: dict[str, str] = {
+    "A1x": "m", "A1y": "m", "k1": "", "gamma1": "rad", "l1": "m", "L1": "m",
+    "A2x": "m", "A2y": "m", "l2": "m", "L2": "m", "k2": "", "gamma2": "rad",
+}  # fmt: skip
 TABLE7_NOMINAL = dict(zip(TABLE7_NAMES, TABLE7[:, 0], strict=True))
 TABLE7_REAL = dict(zip(TABLE7_NAMES, TABLE7[:, 1], strict=True))
 
@@ -281,3 +286,17 @@ TABLE8_REGRESSOR_TRADITIONAL: tuple[int, int] = (36, 36)
 TABLE8_REGRESSOR_DC: tuple[int, int] = (18, 18)
 TABLE8_MEASUREMENTS_TRADITIONAL: int = 72  # printed as 2·18·2
 TABLE8_MEASUREMENTS_DC: int = 108  # printed as 18·2(2+1)
+
+# --- Tables 6 and 8 as printed (symbols and products, not computed values) ------------------
+#: Table 6 (sec. 3.6), rows then columns (traditional, divide and conquer), as printed.
+TABLE6_ROWS: tuple[str, ...] = ("Regressor", "Computational cost (matrix inversion)")
+TABLE6_PRINTED: dict[str, tuple[str, ...]] = {
+    "traditional": ("CᵀC (N n_limbs × N n_limbs)", "∝ N³ n_limbs³"),
+    "divide and conquer": ("C_κᵀC_κ (N × N)", "∝ N³ n_limbs"),
+}
+#: Table 8 (sec. 3.7), rows then columns, as printed.
+TABLE8_ROWS: tuple[str, ...] = (*TABLE6_ROWS, "Measurement cost")
+TABLE8_PRINTED: dict[str, tuple[str, ...]] = {
+    "traditional": ("CᵀC (36 × 36)", "∝ 18³ · 2³", "2 · 18 · 2 = 72"),
+    "divide and conquer": ("C_κᵀC_κ (18 × 18)", "∝ 18³ · 2", "18 · 2(2 + 1) = 108"),
+}

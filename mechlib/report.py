@@ -73,7 +73,8 @@ def compare_row(
         computed ours from an input taken from it, so agreement is "consistent by
         construction", not a reproduction. ``"thesis-inconsistency"``: the comparison sets
         published values against each other, so a divergence is an "inconsistency inside the
-        thesis" (categories: :mod:`mechlib.categories`).
+        thesis" and an agreement is "consistent inside the thesis", never a reproduction
+        (categories: :mod:`mechlib.categories`).
     source : {"thesis", "ours"}
         ``"ours"``: the row tests a hypothesis of ours ("our finding beyond the thesis", never
         counted with the thesis's values).
@@ -174,7 +175,8 @@ def claim_row(
     basis : {"independent", "construction"}
         ``"construction"``: the statement holds by construction on our model (e.g. second-order
         terms vanishing on a linear model), so holding is "consistent by construction", not
-        support of the thesis's claim.
+        support of the thesis's claim; failing is "diverges" (our computation is at fault), not
+        "thesis claim not supported".
 
     Raises
     ------
@@ -193,6 +195,10 @@ def claim_row(
         verdict, category = SUPPORTED, cat.CAT_SUPPORTED
         if basis == cat.BASIS_CONSTRUCTION:
             category = cat.CAT_CONSTRUCTION
+    elif basis == cat.BASIS_CONSTRUCTION:
+        # what should hold by construction on our model does not: our computation is at fault,
+        # not the thesis's claim
+        verdict, category = f"{DIVERGES}: fails although it holds by construction", cat.CAT_DIVERGES
     elif mixed and n_hold:
         verdict = f"{NOT_SUPPORTED} (mixed: {n_hold} of {parts.size} parts hold)"
         category = cat.CAT_MIXED

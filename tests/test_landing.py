@@ -24,6 +24,7 @@ REFERENCES = Path(__file__).parent / "references"
 DECLARATIONS: tuple[tuple[str, str, str, dict[str, str]], ...] = (
     ("published_doe", "Table 2", "design matrix", {"basis": "construction"}),
     ("published_doe", "Table 2", "unit ratio", {"basis": "thesis-inconsistency"}),
+    ("published_doe", "Table 4", "unit ratio", {"basis": "thesis-inconsistency"}),
     ("published_doe", "Table 3", "ν (median", {"basis": "thesis-inconsistency"}),
     ("published_doe", "Table 3", "S₀ = 1.5", {"basis": "thesis-inconsistency"}),
     ("published_doe", "Table 3", "ME (Lenth", {"basis": "thesis-inconsistency"}),
@@ -93,20 +94,25 @@ def test_landing_lists_every_thesis_artefact_with_its_verdict(page: str) -> None
     for kind, number, _, _ in verdicts.THESIS_ARTEFACTS:
         name = verdicts.artefact_name(kind, number)
         assert any(f"{name} " in line or f"{name}`" in line for line in table), name
-    assert "| Fig 1 | Force–displacement meta-modelling methodology | no row | — |" in page
+    assert f"| {verdicts.NO_ROW} |" not in page  # every artefact has a row
+    fig1 = next(line for line in page.splitlines() if line.startswith("| {doc}`Fig 1 "))
+    assert f"| {cat.CAT_REDRAWN} |" in fig1
 
 
 def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
     records: dict[str, dict[str, Any]], page: str
 ) -> None:
-    rows = verdicts.load_rows(records)
+    rows = verdicts.all_rows(records)
     counts = verdicts.category_counts(rows)
     assert pagecheck.count_table(page) == counts
+    assert counts[cat.CAT_REDRAWN] == len(verdicts.REDRAWN)
+    assert counts[cat.CAT_CONSISTENT_THESIS] == 1  # Table 4's units against Eq 8
     assert counts[cat.CAT_CONSTRUCTION] == 14 and counts[cat.CAT_OURS] == 16
     report_page = "# Report\n\n" + verdicts.counts_table(counts) + "\n"
     assert pagecheck.counts_problems(page, report_page, rows) == []
-    wrong = report_page.replace(f"| reproduced | published values | {counts['reproduced']} |",
-                                "| reproduced | published values | 99 |")  # fmt: skip
+    group = verdicts.COUNT_GROUPS[0][0]
+    wrong = report_page.replace(f"| reproduced | {group} | {counts['reproduced']} |",
+                                f"| reproduced | {group} | 99 |")  # fmt: skip
     assert pagecheck.counts_problems(page, wrong, rows) == [
         f"report page: 'reproduced' shows 99 rows, the records have {counts['reproduced']}"
     ]

@@ -52,7 +52,8 @@ def test_a_code_fence_inside_a_directive_is_still_code() -> None:
 @pytest.mark.parametrize(
     "output",
     ["0", "  0\n", "[110.85342447283215, 265.29464450568]", "(1, 2.5e-3)", "True",
-     "np.float64(0.25)", "array([1., 2.])", "-3.5e+02"],
+     "np.float64(0.25)", "array([1., 2.])", "-3.5e+02", "'yes'", '"not the same"',
+     "['yes', 'no']"],
 )  # fmt: skip
 def test_bare_outputs_are_found(output: str) -> None:
     assert pc.is_bare_output(output)
@@ -60,7 +61,15 @@ def test_bare_outputs_are_found(output: str) -> None:
 
 @pytest.mark.parametrize(
     "output",
-    ["", "ME = 110.85", "     x    y\nT1D1 1 0", "record written to r.json", "[ME, SME]"],
+    [
+        "",
+        "ME = 110.85",
+        "     x    y\nT1D1 1 0",
+        "record written to r.json",
+        "[ME, SME]",
+        "it's 'yes' here",
+        "<IPython.core.display.Math object>",
+    ],
 )
 def test_labelled_outputs_pass(output: str) -> None:
     assert not pc.is_bare_output(output)

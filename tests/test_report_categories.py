@@ -39,6 +39,15 @@ def test_thesis_inconsistency_and_our_hypothesis() -> None:
     assert ours["category"] == cat.CAT_OURS
 
 
+def test_published_values_that_agree_are_consistent_inside_the_thesis_not_reproduced() -> None:
+    # Table 4's unit ratio against Eq 8: two published values, no computation of ours
+    row = report.compare_row(
+        "Table 4", "unit ratio", [1.0, 1.0], [1.002, 0.999], rtol=0.01, cause="units",
+        basis="thesis-inconsistency",
+    )  # fmt: skip
+    assert row["category"] == cat.CAT_CONSISTENT_THESIS != cat.CAT_REPRODUCED
+
+
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [({"basis": "fitted"}, "basis must be one of"), ({"source": "me"}, "source must be one of")],
@@ -91,6 +100,15 @@ def test_claims_thesis_ours_and_mixed() -> None:
     assert (mixed["n_values"], mixed["n_agree"]) == (3, 2)
     # without mixed=True, one failing part is "not supported"
     assert report.claim_row("T", "c", "e", [True, False])["category"] == cat.CAT_NOT_SUPPORTED
+
+
+def test_a_failed_claim_by_construction_is_our_divergence_not_the_thesis_claim() -> None:
+    held = report.claim_row("Eq 6", "negligible", "e", True, basis="construction")
+    assert held["category"] == cat.CAT_CONSTRUCTION
+    failed = report.claim_row("Eq 6", "negligible", "e", False, basis="construction")
+    assert failed["category"] == cat.CAT_DIVERGES
+    assert failed["verdict"].startswith(report.DIVERGES)
+    assert cat.CAT_DIVERGES not in cat.CLAIM_CATEGORIES
 
 
 def test_not_reproduced_needs_what_was_tried() -> None:

@@ -8,7 +8,9 @@
 * writes ``book/report.md``, the reproduction report (:mod:`mechlib.pipeline.book.reportpage`), and
   ``book/intro.md``, the landing page (:mod:`mechlib.pipeline.landing`), both from the records;
 * draws the thesis's Figs 1 and 9 on their pages in ``book/generated/``
-  (:mod:`mechlib.pipeline.book.methods`);
+  (:mod:`mechlib.pipeline.book.methods`), and writes the data bundle there
+  (:mod:`mechlib.pipeline.bundle`), which the landing page links;
+* ends every generated page with how it was built (:mod:`mechlib.pipeline.provenance`);
 * checks that every ``file:`` entry of ``book/_toc.yml`` names an existing page, naming the
   entry that does not.
 
@@ -27,7 +29,7 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, records_dir
-from mechlib.pipeline import landing, provenance, verdicts
+from mechlib.pipeline import bundle, landing, provenance, verdicts
 from mechlib.pipeline.book import artefacts, methods, reportpage
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.records import load
@@ -44,10 +46,12 @@ category: *reproduced* (our independent computation agrees within the tolerance 
 half a unit of the last printed digit, round-off, or a stated one), *consistent by construction*
 (we fitted to the published value or computed ours from it, so agreement is expected, not
 evidence), *diverges* (with the cause found in the chapter), *inconsistency inside the thesis*
-(published values contradict each other), *not reproduced*, a claim of the thesis *supported*,
-*not supported* or *mixed*, and *our finding beyond the thesis* (never counted with the thesis's
-claims). The difference is the largest one relative to the largest published value and, where the
-thesis printed a finite number of digits, in units of half its last digit. Each artefact links to
+(published values contradict each other), *consistent inside the thesis* (published values set
+against each other agree), *not reproduced*, a claim of the thesis *supported*, *not supported*
+or *mixed*, *our finding beyond the thesis* (never counted with the thesis's claims), *computed*
+(nothing published to compare with) and *redrawn* (a diagram of the thesis's method). The
+difference is the largest one relative to the largest published value and, where the thesis
+printed a finite number of digits, in units of half its last digit. Each artefact links to
 the section of the chapter page that shows it.
 
 """
@@ -112,6 +116,8 @@ class Linker:
         self.sections = sections
 
     def __call__(self, page: str, what: str, text: str | None = None) -> str:
+        if "/" in page:  # a generated page of the book (e.g. a redrawn method figure)
+            return f"{{doc}}`{text or what} </{page}>`"
         section = artefacts.find_section(self.sections.get(page, []), what)
         if section is not None:
             return f"{{ref}}`{text} <{section.label}>`" if text else f"{{ref}}`{section.label}`"
@@ -124,14 +130,19 @@ def _write(path: Path, text: str) -> None:
         path.write_text(text)
 
 
-def copy_chapters(executed: Path, chapters: Path) -> dict[str, list[artefacts.Section]]:
-    """Prepare every executed notebook into ``chapters``; return each page's sections."""
+def copy_chapters(
+    executed: Path, chapters: Path, made: str = ""
+) -> dict[str, list[artefacts.Section]]:
+    """Prepare every executed notebook into ``chapters``, ending with the provenance ``made``
+    (:func:`provenance.text`) when given; return each page's sections."""
     chapters.mkdir(parents=True, exist_ok=True)
     sections = {}
     for nb_path in sorted(Path(executed).glob("*.ipynb")):
         nb, sections[nb_path.stem] = prepare_notebook(
             json.loads(nb_path.read_text()), nb_path.stem, REPO_ROOT
         )
+        if made:
+            nb["cells"].append(provenance.notebook_cell(made))
         _write(chapters / nb_path.name, json.dumps(nb, indent=1, ensure_ascii=False) + "\n")
     return sections
 
@@ -150,6 +161,13 @@ def report_rows(
         rows[chapter_of[rec["notebook"]]] += [
             reportpage.Row(rec["notebook"], r) for r in rec.get("report", [])
         ]
+    chapter_of_artefact = {
+        verdicts.artefact_name(k, n): ch for k, n, ch, _ in verdicts.THESIS_ARTEFACTS
+    }
+    for row in verdicts.redrawn_rows():
+        number = chapter_of_artefact[row.fields["artefact"]]
+        if number in rows:
+            rows[number].append(reportpage.Row(row.page, row.fields))
     return rows
 
 
@@ -188,15 +206,24 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
     ``profile``); return the problems found in ``_toc.yml``."""
     toc = yaml.safe_load((Path(book) / "_toc.yml").read_text())
     chapters = toc_chapters(toc)
-    link = Linker(copy_chapters(executed, Path(book) / "chapters"))
+    made = provenance.text(profile=profile)  # one build, one date on every page
+    link = Linker(copy_chapters(executed, Path(book) / "chapters", made))
     rows = report_rows(records, chapters)
-    _write(Path(book) / "report.md", report_markdown(rows, chapters, link))
-    landing.write_landing(
-        records, Path(book) / "intro.md", profile, link=link, provenance=provenance.text()
-    )
+    footer = provenance.block(made)
+    _write(Path(book) / "report.md", report_markdown(rows, chapters, link) + footer)
     generated = Path(book) / "generated"
     generated.mkdir(parents=True, exist_ok=True)
-    methods.write_pages(generated, link)
+    data = bundle.write_bundle(records, generated / bundle.NAME)
+    landing.write_landing(
+        records,
+        Path(book) / "intro.md",
+        profile,
+        link=link,
+        provenance=made,
+        bundle=f"/{data.relative_to(Path(book)).as_posix()}",
+    )
+    for page in methods.write_pages(generated, link):
+        _write(page, page.read_text() + footer)
     return missing_toc_pages(book)
 
 

@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from mechlib import categories as cat
+from mechlib.pipeline import bundle as bundle_mod
 from mechlib.pipeline import verdicts
 
 #: A recorded value: (notebook, record key, index into the value, or "max"/"min" of it, or None).
@@ -65,7 +66,10 @@ LEGEND = (
     "*Reproduced*: our independent computation agrees within the tolerance the report states. "
     "*Consistent by construction*: we fitted to the published value or computed ours from it, "
     "so agreement is expected, not evidence. *Inconsistency inside the thesis*: published "
-    "values contradict each other. *No row*: the report does not yet compare this artefact."
+    "values contradict each other; *consistent inside the thesis*: published values set against "
+    "each other agree (no computation of ours is tested). *Computed*: a figure or number of the "
+    "thesis that we compute with nothing published to compare it with. *Redrawn*: a diagram of "
+    "the thesis's method, drawn from its text."
 )
 
 RERUN_TEXT = """\
@@ -201,8 +205,8 @@ FINDINGS: tuple[Finding, ...] = (
 
 
 def doc_link(page: str, what: str, text: str) -> str:
-    """A MyST link to chapter page ``page`` (``what`` unused: no section labels known)."""
-    return f"{{doc}}`{text} </chapters/{page}>`"
+    """A MyST link to chapter ``page`` (or ``folder/page`` under ``book/``); ``what`` unused."""
+    return f"{{doc}}`{text} </{page if '/' in page else f'chapters/{page}'}>`"
 
 
 def quote(records: verdicts.Records, where: Quote) -> float:
@@ -323,12 +327,16 @@ def profile_text(records: verdicts.Records, profile: str) -> str:
 
 
 def landing_markdown(
-    records: verdicts.Records, profile: str, link: Link = doc_link, provenance: str = ""
+    records: verdicts.Records,
+    profile: str,
+    link: Link = doc_link,
+    provenance: str = "",
+    bundle: str = "",
 ) -> str:
     """The landing page's MyST text (see :func:`write_landing`)."""
     if not isinstance(profile, str) or not _PROFILE.match(profile):
         raise ValueError(f"profile must be a name of letters, digits, - or _, got {profile!r}")
-    rows = verdicts.load_rows(records)
+    rows = verdicts.all_rows(records)
     counts = verdicts.category_counts(rows)
     findings = [line for f in FINDINGS for line in finding_lines(f, records, rows, link)]
     return "\n".join(
@@ -355,6 +363,7 @@ def landing_markdown(
             profile_text(records, profile),
             "",
             *([f"Made from:\n\n{provenance}", ""] if provenance else []),
+            *(["## Data", "", bundle_mod.link_text(bundle), ""] if bundle else []),
             RERUN_TEXT,
         ]
     )
@@ -367,6 +376,7 @@ def write_landing(
     *,
     link: Link = doc_link,
     provenance: str = "",
+    bundle: str = "",
 ) -> None:
     """Write the landing page ``out`` from the records (only when its text changed).
 
@@ -383,6 +393,8 @@ def write_landing(
         build's ``Linker``); default: a link to the page.
     provenance : str, optional
         Markdown lines saying what made the build (:func:`mechlib.pipeline.provenance.text`).
+    bundle : str, optional
+        The data bundle's path in the book (``/generated/mechlib-data.zip``), linked when given.
 
     Raises
     ------
@@ -391,7 +403,7 @@ def write_landing(
     FileNotFoundError
         For a records folder without records.
     """
-    text = landing_markdown(verdicts.load_records(records), profile, link, provenance)
+    text = landing_markdown(verdicts.load_records(records), profile, link, provenance, bundle)
     out = Path(out)
     if not out.exists() or out.read_text() != text:
         out.write_text(text)

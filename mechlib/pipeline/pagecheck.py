@@ -7,8 +7,9 @@ clean. ``make test`` runs them over ``book/`` and ``book/_build/html``.
 * Chapter text must not speak to developers: "issue", "make bench", "CI", "earlier version",
   "repository's history" (:data:`JARGON`) are refused in prose, except inside an admonition
   titled "Re-run this page" (:data:`RERUN_TITLE`), where commands belong. Code is not prose.
-* A cell output must not be a bare number, list of numbers or boolean (``[110.85…, 265.29…]``,
-  a lone ``0``): a number shown to the reader needs a label (a table, a sentence).
+* A cell output must not be a bare number, list of numbers, boolean or string repr
+  (``[110.85…, 265.29…]``, a lone ``0``, ``'yes'``): a value shown to the reader needs a label
+  (a table, a sentence).
 * No ``site-packages`` path, even a relative one, anywhere.
 * The landing page's counts per verdict equal the report page's and the records'.
 """
@@ -36,8 +37,10 @@ JARGON: tuple[tuple[str, re.Pattern[str]], ...] = (
 RERUN_TITLE = re.compile(r"re-?run\s+this\s+page", re.IGNORECASE)
 SITE_PACKAGES = re.compile(r"site-packages")
 _NUM = r"[-+]?(?:\d+(?:\.\d*)?(?:[eE][-+]?\d+)?|\.\d+|nan|inf)"
-_SCALAR = rf"(?:{_NUM}|True|False|None|np\.\w+\(\s*{_NUM}\s*\))"
-#: an output that is only a number, a boolean or a list/tuple/array of them
+#: a Python string's repr ('yes', "a b"): what a cell shows when its last line is a str
+_STRING = r"""(?:'(?:[^'\\\n]|\\.)*'|"(?:[^"\\\n]|\\.)*")"""
+_SCALAR = rf"(?:{_NUM}|True|False|None|{_STRING}|np\.\w+\(\s*{_NUM}\s*\))"
+#: an output that is only a number, a boolean, a string's repr or a list/tuple/array of them
 BARE_OUTPUT = re.compile(
     rf"^\s*(?:{_SCALAR}|[\[(]\s*{_SCALAR}(?:\s*,\s*{_SCALAR})*\s*,?\s*[\])]|array\(.*\))\s*$",
     re.DOTALL,
@@ -78,7 +81,7 @@ def site_package_problems(text: str, where: str) -> list[str]:
 
 
 def is_bare_output(text: str) -> bool:
-    """Whether a cell output is only a number, boolean or list of them (no label)."""
+    """Whether a cell output is only a number, boolean, string repr or list of them (no label)."""
     return bool(text.strip()) and BARE_OUTPUT.match(text) is not None
 
 

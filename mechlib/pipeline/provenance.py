@@ -1,8 +1,9 @@
 """Where and with what a build was made: commit, date, profile, Python and package versions, CPU.
 
-The landing page shows it (:mod:`mechlib.pipeline.landing`), so that a reader can tell which code
-and which machine produced the numbers and timings of the book. Nothing here enters a record:
-records must be identical between builds, provenance is not.
+The landing page shows it (:mod:`mechlib.pipeline.landing`) and every other generated page ends
+with it (:func:`block`, added by :mod:`mechlib.pipeline.bookbuild`), so that a reader can tell
+which code and which machine produced the numbers and timings of the page. Nothing here enters
+a record: records must be identical between builds, provenance is not.
 """
 
 from __future__ import annotations
@@ -68,14 +69,30 @@ def versions(packages: tuple[str, ...] = PACKAGES) -> dict[str, str]:
     return out
 
 
-def text(now: dt.datetime | None = None) -> str:
-    """Markdown lines: commit, build date (UTC), Python and package versions, CPU model."""
+def text(now: dt.datetime | None = None, profile: str = "") -> str:
+    """Markdown lines: commit, build date (UTC), profile, Python and package versions, CPU."""
     when = (now or dt.datetime.now(dt.UTC)).strftime("%Y-%m-%d %H:%M UTC")
     listed = ", ".join(f"{k} {v}" for k, v in versions().items())
+    built = f"- commit `{commit()}`, built {when}" + (f", profile `{profile}`" if profile else "")
     return "\n".join(
         [
-            f"- commit `{commit()}`, built {when}",
+            built,
             f"- Python {platform.python_version()}; {listed}",
             f"- processor: {cpu_model()} (timings quoted in the chapters are this machine's)",
         ]
     )
+
+
+#: The title of the provenance box at the end of a generated page.
+BLOCK_TITLE = "How this page was built"
+
+
+def block(made: str) -> str:
+    """A folded MyST admonition holding the provenance lines ``made`` (see :func:`text`), for the
+    end of a Markdown page."""
+    return f"\n```{{admonition}} {BLOCK_TITLE}\n:class: dropdown\n\n{made}\n```\n"
+
+
+def notebook_cell(made: str) -> dict[str, object]:
+    """A markdown cell holding :func:`block`, for the end of a chapter notebook."""
+    return {"cell_type": "markdown", "id": "provenance", "metadata": {}, "source": block(made)}

@@ -64,25 +64,29 @@ HEADLINE_ORDER = (
     cat.CAT_REPRODUCED,
     cat.CAT_SUPPORTED,
     cat.CAT_CONSTRUCTION,
+    cat.CAT_CONSISTENT_THESIS,
     cat.CAT_OURS,
     cat.CAT_COMPUTED,
+    cat.CAT_REDRAWN,
 )
 #: What the landing table shows for an artefact that no report row covers.
 NO_ROW = "no row"
 #: How the counts are grouped: the thesis's published values, its claims, and ours.
 COUNT_GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
     (
-        "published values",
+        "published values and by-construction checks",
         (
             cat.CAT_REPRODUCED,
             cat.CAT_CONSTRUCTION,
             cat.CAT_DIVERGES,
             cat.CAT_INCONSISTENT,
+            cat.CAT_CONSISTENT_THESIS,
             cat.CAT_NOT_REPRODUCED,
         ),
     ),
     ("claims of the thesis", cat.CLAIM_CATEGORIES),
     ("beyond the thesis", (cat.CAT_OURS, cat.CAT_COMPUTED)),
+    ("not compared", (cat.CAT_REDRAWN,)),
 )
 #: Header of the counts table; :func:`mechlib.pipeline.pagecheck.count_table` finds it by this.
 COUNTS_HEADER = "| Verdict | Counted among | Rows |"
@@ -181,6 +185,55 @@ def load_rows(records: Records | Path) -> list[ReportRow]:
         for name, rec in sorted(load_records(records).items())
         for row in rec.get("report", [])
     ]
+
+
+#: The thesis's method figures, which the book build redraws from the thesis's text
+#: (:mod:`mechlib.pipeline.book.methods`; no notebook records them): page under ``book/``,
+#: artefact, and what the page shows.
+REDRAWN: tuple[tuple[str, str, str], ...] = (
+    (
+        "generated/method_doe",
+        "Fig 1",
+        "the meta-modelling method (sec. 2.5) as a flow diagram, each step linked to the "
+        "section of this book that carries it out",
+    ),
+    (
+        "generated/protocol_5r",
+        "Fig 9",
+        "the identification protocol (sec. 3.6) as a flow diagram, each step linked to the "
+        "section of this book that carries it out",
+    ),
+)
+
+
+def redrawn_rows() -> list[ReportRow]:
+    """One row per method figure of :data:`REDRAWN`: category :data:`~mechlib.categories.
+    CAT_REDRAWN` (a diagram of the thesis's text: nothing computed, nothing to compare)."""
+    return [
+        ReportRow(
+            page,
+            {
+                "artefact": artefact,
+                "quantity": quantity,
+                "published": "(diagram)",
+                "ours": "redrawn by code from the thesis's text",
+                "max_abs_diff": None,
+                "max_rel_diff": None,
+                "difference": None,
+                "verdict": cat.CAT_REDRAWN,
+                "category": cat.CAT_REDRAWN,
+                "source": cat.SOURCE_THESIS,
+                "difference_text": "—",
+            },
+        )
+        for page, artefact, quantity in REDRAWN
+    ]
+
+
+def all_rows(records: Records | Path) -> list[ReportRow]:
+    """The records' rows (:func:`load_rows`) and the build's rows of redrawn method figures
+    (:func:`redrawn_rows`): every row the report and the landing page count."""
+    return load_rows(records) + redrawn_rows()
 
 
 def category_counts(rows: Iterable[ReportRow]) -> dict[str, int]:

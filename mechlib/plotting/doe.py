@@ -19,6 +19,7 @@ from mechlib.plotting.style import (
     margin_line,
     panel_grid,
     panel_label,
+    readable_value_axis,
 )
 from mechlib.screening import half_normal_points, pareto_order
 
@@ -83,6 +84,7 @@ def half_normal_panels(
         ax.set_ylabel("half-normal quantile")
         top = max(mag.max(), 1e-12)
         ax.set_xlim(left=-0.05 * top, right=1.25 * top)
+        readable_value_axis(ax.xaxis)
     fig.suptitle(title)
     return fig
 
@@ -118,6 +120,7 @@ def pareto_panels(
         margin_line(ax, None if margins is None else margins[j])
         ax.set_title(f"{panel_label(j)} {response_labels[j]}")
         ax.set_xlabel("|effect|")
+        readable_value_axis(ax.xaxis)
     fig.suptitle(title)
     return fig
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+from matplotlib import colors
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
@@ -25,6 +26,8 @@ from mechlib.plotting.style import (
     circle,
     figure_and_axes,
     figure_and_panels,
+    panel_label,
+    unit_ticks,
 )
 
 #: Strategy colours of the Monte Carlo figures, in the order the strategies are given.
@@ -155,19 +158,27 @@ def fivebar_postures(
     -------
     matplotlib.figure.Figure
     """
-    fig, panels = figure_and_panels(axes, (1, 3), (11.0, 3.9), sharey=True)
+    fig, panels = figure_and_panels(axes, (1, 3), (11.0, 4.4), sharey=True)
     titles = {"trad": "(a) traditional", "leg1": "(b) D&C, left leg", "leg2": "(c) D&C, right leg"}
     for ax, (key, title) in zip(panels, titles.items(), strict=True):
-        ax.plot(candidates[:, 0], candidates[:, 1], ".", color="#cccccc", ms=1.5)
+        ax.plot(candidates[:, 0], candidates[:, 1], ".", color="#cccccc", ms=1.5, label="candidate")
         sel = candidates[chosen[key]]
-        ax.plot(sel[:, 0], sel[:, 1], "o", color=ACTIVE_COLOR, ms=5)
-        _miw_circle(ax, miw, ls="-")
-        _miw_circle(ax, miw, fraction * miw["radius"], ls=":")
+        ax.plot(sel[:, 0], sel[:, 1], "o", color=ACTIVE_COLOR, ms=5, label="selected posture")
+        _miw_circle(ax, miw, ls="-", label="MIW")
+        _miw_circle(
+            ax, miw, fraction * miw["radius"], ls=":", label=f"{fraction:.0%} of the MIW radius"
+        )
         ax.set_aspect("equal")
         ax.set_title(f"{title}: {len(sel)} postures")
         ax.set_xlabel("x [m]")
     panels[0].set_ylabel("y [m]")
+    handles, names = panels[0].get_legend_handles_labels()
+    fig.legend(handles, names, loc="outside lower center", ncol=len(names), fontsize=8)
     return fig
+
+
+#: the value axis of per-parameter errors: each parameter keeps its own unit (tick label)
+PARAMETER_ERROR_LABEL = "|error| (unit under each bar; gains unitless)"
 
 
 def fivebar_parameter_errors(
@@ -176,6 +187,7 @@ def fivebar_parameter_errors(
     dc: np.ndarray,
     trad: np.ndarray,
     ax: Axes | None = None,
+    units: Sequence[str] | None = None,
 ) -> Figure:
     """Fig 13: parameter errors (value − real) before and after calibration, log scale.
 
@@ -184,8 +196,11 @@ def fivebar_parameter_errors(
     names : sequence of str
         Parameter names.
     before, dc, trad : numpy.ndarray, shape (len(names),)
-        Errors of the nominal, D&C and traditional parameters [m or rad].
+        Errors of the nominal, D&C and traditional parameters, each in its parameter's unit
+        (m for lengths, rad for angles; gains are unitless).
     ax : Axes, optional
+    units : sequence of str, optional
+        Each parameter's unit, shown in its tick label ("" for a unitless gain).
 
     Returns
     -------
@@ -200,8 +215,8 @@ def fivebar_parameter_errors(
     ):
         ax.bar(x + off, np.abs(vals), 0.27, label=label, color=color)
     ax.set_yscale("log")
-    ax.set_xticks(x, names, rotation=45)
-    ax.set_ylabel("|parameter − real| [m or rad]")
+    ax.set_xticks(x, unit_ticks(names, units), rotation=45)
+    ax.set_ylabel(PARAMETER_ERROR_LABEL)
     ax.legend(fontsize=7)
     ax.set_title("Fig 13: residual parameter errors, one seeded draw")
     return fig
@@ -212,6 +227,8 @@ def fivebar_error_maps(
     maps: Mapping[str, np.ndarray],
     miw: Mapping[str, float],
     axes: Sequence[Axes] | None = None,
+    shared: Sequence[str] = (),
+    ratio: tuple[str, np.ndarray] | None = None,
 ) -> Figure:
     """Fig 14: local RMS position error over the workspace, one panel per model.
 
@@ -224,19 +241,51 @@ def fivebar_error_maps(
     miw : mapping
         ``cx``, ``cy``, ``radius`` [m].
     axes : sequence of Axes, optional
-        One panel per map.
+        One panel per map (and one more for ``ratio``).
+    shared : sequence of str
+        Titles of the maps drawn on one colour scale (one colour bar), so that their colours
+        compare; the other maps get a scale each.
+    ratio : (title, numpy.ndarray of shape (n,)), optional
+        A last panel of a ratio of two maps, on a diverging scale centred on 1.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    fig, panels = figure_and_panels(axes, (1, len(maps)), (4.0 * len(maps), 3.8))
-    for ax, (title, err) in zip(panels, maps.items(), strict=True):
-        sc = ax.scatter(grid[:, 0], grid[:, 1], c=UM_PER_M * err, s=14, cmap="viridis")
+    unknown = set(shared) - set(maps)
+    if unknown:
+        raise ValueError(f"shared names maps that are not given: {sorted(unknown)}")
+    # maps on their own scales, then the ratio, then the maps sharing one scale, so that the
+    # shared ones sit side by side under one colour bar
+    order = [k for k in maps if k not in shared] + (["ratio"] if ratio else []) + list(shared)
+    grid_shape = (2, 2) if len(order) == 4 else (1, len(order))  # four panels: a square
+    fig, panels = figure_and_panels(axes, grid_shape, (4.3 * grid_shape[1], 3.8 * grid_shape[0]))
+    panels = list(np.ravel(panels))
+    top = max((UM_PER_M * maps[k].max() for k in shared), default=None)
+    for j, (ax, key) in enumerate(zip(panels, order, strict=False)):
+        if key == "ratio":
+            title, values = ratio
+            spread = max(float(np.abs(np.log(values)).max()), 1e-3)
+            norm = colors.TwoSlopeNorm(1.0, np.exp(-spread), np.exp(spread))
+            sc = ax.scatter(grid[:, 0], grid[:, 1], c=values, s=14, cmap="RdBu_r", norm=norm)
+            fig.colorbar(sc, ax=ax, label="ratio (1: equal)", shrink=0.8)
+        else:
+            title = key
+            scale = {"vmin": 0.0, "vmax": top} if key in shared else {}
+            sc = ax.scatter(
+                grid[:, 0], grid[:, 1], c=UM_PER_M * maps[key], s=14, cmap="viridis", **scale
+            )
+            if key not in shared:
+                fig.colorbar(sc, ax=ax, label="local RMS error [µm]", shrink=0.8)
+            elif key == shared[-1]:
+                joint = [panels[order.index(k)] for k in shared]
+                fig.colorbar(sc, ax=joint, label="local RMS error [µm], same scale", shrink=0.8)
         _miw_circle(ax, miw)
         ax.set_aspect("equal")
-        ax.set_title(title)
-        fig.colorbar(sc, ax=ax, label="local RMS error [µm]", shrink=0.8)
+        ax.set_title(f"{panel_label(j)} {title}")
+        ax.set_xlabel("x [m]")
+    for ax in panels[:: grid_shape[1]]:
+        ax.set_ylabel("y [m]")
     fig.suptitle("Fig 14: position error over the workspace")
     return fig
 
@@ -246,6 +295,7 @@ def fivebar_distributions(
     param_err: Mapping[str, np.ndarray],
     names: Sequence[str],
     axes: Sequence[Axes] | None = None,
+    units: Sequence[str] | None = None,
 ) -> Figure:
     """Monte Carlo distributions: workspace RMS error and per-parameter errors, per strategy.
 
@@ -258,6 +308,8 @@ def fivebar_distributions(
     names : sequence of str
     axes : sequence of 2 Axes, optional
         The histogram and the box plots.
+    units : sequence of str, optional
+        Each parameter's unit, shown in its tick label ("" for a unitless gain).
 
     Returns
     -------
@@ -284,8 +336,8 @@ def fivebar_distributions(
             box.set_alpha(0.55)
         ax1.plot([], [], "s", color=color, alpha=0.55, label=label)
     ax1.set_yscale("log")
-    ax1.set_xticks(x, names, rotation=45)
-    ax1.set_ylabel("|identified − real| [m or rad]")
+    ax1.set_xticks(x, unit_ticks(names, units), rotation=45)
+    ax1.set_ylabel(PARAMETER_ERROR_LABEL)
     ax1.legend(fontsize=7)
     fig.suptitle("Monte Carlo distributions over the seeded trials")
     return fig

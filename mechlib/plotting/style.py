@@ -12,7 +12,9 @@ from collections.abc import Sequence
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib import ticker
 from matplotlib.axes import Axes
+from matplotlib.axis import Axis
 from matplotlib.collections import PolyCollection
 from matplotlib.figure import Figure
 
@@ -108,6 +110,25 @@ def panel_grid(n: int, columns: int = 3) -> tuple[int, int]:
     return (n + columns - 1) // columns, min(n, columns)
 
 
+#: at most this many ticks on a value axis of a small panel, so that long labels do not collide
+VALUE_TICKS = 4
+
+
+def readable_value_axis(axis: Axis) -> None:
+    """At most :data:`VALUE_TICKS` ticks, and large or small magnitudes as a power of ten shown
+    once at the axis's end (``×10⁵``) instead of long labels that collide.
+
+    Parameters
+    ----------
+    axis : matplotlib.axis.Axis
+        E.g. ``ax.xaxis``.
+    """
+    axis.set_major_locator(ticker.MaxNLocator(VALUE_TICKS))
+    formatter = ticker.ScalarFormatter(useMathText=True)
+    formatter.set_powerlimits((-3, 4))
+    axis.set_major_formatter(formatter)
+
+
 def panel_label(j: int) -> str:
     """``(a)``, ``(b)``, … for panel ``j`` (0-based)."""
     return f"({chr(ord('a') + j)})"
@@ -157,3 +178,29 @@ def draw_quads(
 def circle(ax: Axes, center: Sequence[float], radius: float, **kw) -> None:
     """An unfilled circle (e.g. the MIW) in data coordinates."""
     ax.add_patch(plt.Circle(tuple(center), radius, fill=False, **kw))
+
+
+def unit_ticks(names: Sequence[str], units: Sequence[str] | None) -> list[str]:
+    """Tick labels with each parameter's unit.
+
+    Parameters
+    ----------
+    names : sequence of str
+    units : sequence of str or None
+        One unit per name ("" for a unitless gain); None keeps the names.
+
+    Returns
+    -------
+    list of str
+        ``["l1 [m]", "k1", …]``.
+
+    Raises
+    ------
+    ValueError
+        When ``units`` has another length than ``names``.
+    """
+    if units is None:
+        return list(names)
+    if len(units) != len(names):
+        raise ValueError(f"{len(names)} parameter names need as many units, got {len(units)}")
+    return [f"{n} [{u}]" if u else n for n, u in zip(names, units, strict=True)]

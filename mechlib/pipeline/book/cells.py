@@ -10,6 +10,7 @@ rule, what each cell shows:
   its glued values still reach the text;
 * every other code cell is folded (``hide-input``): figures and tables stay visible;
 * outputs lose lines of known library warnings and have absolute machine paths neutralised;
+* a figure cell gets its numbered caption and alt text (:mod:`mechlib.pipeline.book.figures`);
 * every heading gets a MyST label, so the report and the method pages can link to sections.
 """
 
@@ -22,6 +23,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from mechlib.pipeline.book import figures
 from mechlib.pipeline.book.artefacts import Section, parse
 
 #: Tags that show a reader-facing cell as written (papermill's parameter cells).
@@ -255,7 +257,9 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
     )
     sections: list[Section] = []
     prefix = re.sub(r"[^a-z0-9]+", "-", name.lower()).strip("-")
+    out_cells = []
     for cell in cells:
+        out_cells.append(cell)
         if cell.get("cell_type") == "markdown":
             text, found = label_headings("".join(cell.get("source", "")), prefix, len(sections))
             cell["source"] = text
@@ -265,4 +269,32 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
             continue
         cell.setdefault("metadata", {})["tags"] = cell_tags(cell, recorders)
         cell["outputs"] = clean_outputs(cell.get("outputs", []), repo_root)
+        figure = figures.figure_metadata(name, cell)
+        if figure is not None:
+            cell["metadata"]["mystnb"] = figure
+            rest = split_figure(cell)
+            out_cells += [rest] if rest else []
+    nb["cells"] = out_cells
     return nb, sections
+
+
+def split_figure(cell: dict[str, Any]) -> dict[str, Any] | None:
+    """Keep only a figure cell's image outputs (and text streams) in it, so that its caption
+    goes to the figure alone; return a cell showing its other outputs (a table shown beside the
+    figure), without input, or None when it has none."""
+    images, others = [], []
+    for out in cell.get("outputs", []):
+        shown = out.get("output_type") in ("display_data", "execute_result")
+        is_image = shown and set(out.get("data", {})) & {"image/png", "image/svg+xml", "image/jpeg"}
+        (others if shown and not is_image else images).append(out)
+    if not others:
+        return None
+    cell["outputs"] = images
+    return {
+        "cell_type": "code",
+        "execution_count": None,
+        "id": f"{cell.get('id', 'cell')}-shown",
+        "metadata": {"tags": ["remove-input"]},
+        "outputs": others,
+        "source": "",
+    }

@@ -77,7 +77,8 @@ def chapter_table(rows: Sequence[Row], chapter: Chapter, link: Callable[[str, st
     def key(item: tuple[int, Row]) -> tuple:
         index, row = item
         found = artefacts.parse(row.fields["artefact"])
-        return (*artefacts.sort_key(found, chapter.number), chapter.pages.index(row.page), index)
+        page = chapter.pages.index(row.page) if row.page in chapter.pages else len(chapter.pages)
+        return (*artefacts.sort_key(found, chapter.number), page, index)
 
     lines = [
         "```{list-table}",

@@ -1,0 +1,173 @@
+"""The book's data bundle: one zip with the thesis's transcribed tables, every record and our runs.
+
+``make book`` writes it (:func:`write_bundle`, called by :mod:`mechlib.pipeline.bookbuild`) to
+``book/generated/``; the landing page links it with a ``{download}`` role, so Sphinx copies it into
+the HTML output. Contents:
+
+* ``thesis/*.csv``: the tables and equations transcribed from the thesis
+  (:mod:`mechlib.published`), values as printed (Table 2 in its printed nm and mrad), one file per
+  artefact;
+* ``records/<notebook>.json``: every record of this build (key numbers, tolerances, report rows);
+* ``runs/*.csv``: the FE runs the records hold in full (our responses to the designs of Tables 2
+  and 4), with their forces;
+* ``README.txt``: what each file is, and what is not included.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import zipfile
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from mechlib import published as pub
+
+#: The bundle's file name (the landing page links it).
+NAME = "mechlib-data.zip"
+#: a fixed time stamp for every member, so that equal contents give equal bytes
+_STAMP = (2010, 1, 1, 0, 0, 0)
+_HEADS = [f"{r} [{u}]" for r, u in zip(pub.RESPONSES, pub.RESPONSE_UNITS, strict=True)]
+_FORCES = [f"{f} [N]" for f in pub.FACTORS]
+#: records whose values hold whole runs: (notebook, record key, design, file, what)
+RUNS: tuple[tuple[str, str, str, str], ...] = (
+    ("virtual_experiments", "table2.responses", "TABLE2_DESIGN", "runs/table2_ours.csv"),
+    ("virtual_experiments", "table4.responses", "TABLE4_DESIGN", "runs/table4_ours.csv"),
+)
+
+README = """\
+Data of the executable reproduction of D. Restrepo, "Experiment Design in Compliant Mechanisms
+and Kinematic Identification of Parallel Mechanisms", thesis, Universidad EAFIT, 2010.
+
+thesis/   values transcribed from the thesis (mechlib/published.py), as printed:
+          table1_levels.csv, table2_printed.csv (responses in nm and mrad, although the thesis's
+          header says um and urad), table3_effects.csv, table3_summary.csv,
+          table4_printed.csv, eq8_S_T.csv, table5.csv, table6_printed.csv, table7.csv,
+          table8_printed.csv
+records/  every record of this build: key numbers with their tolerances, glued values and the
+          reproduction report's rows (JSON)
+runs/     our FE model's responses to the designs of Tables 2 and 4 (um, urad), with the forces
+Not included: the 1000 random validation runs of Table 5 and the non-linear runs; the chapter
+on virtual experiments regenerates them from its seed (its parameters cell).
+"""
+
+
+def _number(value: float) -> str:
+    return np.format_float_positional(float(value), trim="-")
+
+
+def csv_text(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
+    """CSV text (``\\n`` line ends) of a header and rows; floats as their shortest decimal."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(header)
+    for row in rows:
+        writer.writerow([_number(v) if isinstance(v, float | np.floating) else v for v in row])
+    return out.getvalue()
+
+
+def _matrix(header: Sequence[str], index: Sequence[str], values: np.ndarray) -> str:
+    rows = zip(index, values, strict=True)
+    return csv_text(header, ([name, *map(float, row)] for name, row in rows))
+
+
+def _printed(rows: Sequence[str], columns: Mapping[str, Sequence[str]]) -> str:
+    cells = ([r, *(c[i] for c in columns.values())] for i, r in enumerate(rows))
+    return csv_text(["row", *columns], cells)
+
+
+def thesis_tables() -> dict[str, str]:
+    """The transcribed thesis tables as CSV texts, by file name inside the bundle."""
+    runs12 = [str(i) for i in range(1, 13)]
+    runs30 = [str(i) for i in range(1, 31)]
+    printed_units = ("nm",) * 3 + ("mrad",) * 3
+    printed_t2 = [f"{r} [{u}]" for r, u in zip(pub.RESPONSES, printed_units, strict=True)]
+    t7 = (
+        [n, pub.TABLE7_UNITS[n], *map(float, row)]
+        for n, row in zip(pub.TABLE7_NAMES, pub.TABLE7, strict=True)
+    )
+    per_n = [f"{r} [{u}/N]" for r, u in zip(pub.RESPONSES, pub.RESPONSE_UNITS, strict=True)]
+    return {
+        "thesis/table1_levels.csv": csv_text(
+            ["factor", "low [N]", "high [N]"],
+            ([f, pub.TABLE1_LOW_N, pub.TABLE1_HIGH_N] for f in pub.FACTORS),
+        ),
+        "thesis/table2_printed.csv": _matrix(
+            ["run", *_FORCES, *printed_t2], runs12, np.c_[pub.TABLE2_DESIGN, pub.TABLE2_RESPONSES]
+        ),
+        "thesis/table3_effects.csv": _matrix(
+            ["factor", *printed_t2], pub.TABLE3_EFFECT_ROWS, pub.TABLE3_EFFECTS
+        ),
+        "thesis/table3_summary.csv": _matrix(
+            ["statistic", *printed_t2], pub.TABLE3_SUMMARY_ROWS, pub.TABLE3_SUMMARY
+        ),
+        "thesis/table4_printed.csv": _matrix(
+            ["run", *_FORCES, *_HEADS], runs30, np.c_[pub.TABLE4_DESIGN, pub.TABLE4_RESPONSES]
+        ),
+        "thesis/eq8_S_T.csv": _matrix(
+            ["response [per N]", *pub.FACTORS],
+            per_n,
+            pub.EQ8_ST,
+        ),
+        "thesis/table5.csv": _matrix(["response", *pub.TABLE5_COLUMNS], _HEADS, pub.TABLE5),
+        "thesis/table6_printed.csv": _printed(pub.TABLE6_ROWS, pub.TABLE6_PRINTED),
+        "thesis/table7.csv": csv_text(["parameter", "unit", "nominal", "real"], t7),
+        "thesis/table8_printed.csv": _printed(pub.TABLE8_ROWS, pub.TABLE8_PRINTED),
+    }
+
+
+def link_text(bundle: str) -> str:
+    """The landing page's paragraph linking the bundle (``bundle``: its path in the book)."""
+    return (
+        f"{{download}}`Download the data of this build <{bundle}>` (one zip): the thesis's "
+        "tables as transcribed (CSV), every record of key numbers with its tolerance and report "
+        "rows (JSON), and our FE runs of the designs of Tables 2 and 4 (CSV); its README says "
+        "what each file is."
+    )
+
+
+def run_tables(records: Mapping[str, Mapping]) -> dict[str, str]:
+    """Our runs that the records hold in full (:data:`RUNS`), as CSV texts by file name; a
+    record this build does not have is left out."""
+    out = {}
+    for notebook, key, design_name, name in RUNS:
+        values = records.get(notebook, {}).get("values", {})
+        if key not in values:
+            continue
+        design = getattr(pub, design_name)
+        runs = [str(i) for i in range(1, len(design) + 1)]
+        out[name] = _matrix(
+            ["run", *_FORCES, *_HEADS], runs, np.c_[design, np.asarray(values[key]["value"])]
+        )
+    return out
+
+
+def write_bundle(records: Path, out: Path) -> Path:
+    """Write the bundle ``out`` (a zip) from the record folder ``records``; return its path.
+
+    Raises
+    ------
+    FileNotFoundError
+        When ``records`` holds no record.
+    """
+    paths = sorted(Path(records).glob("*.json"))
+    if not paths:
+        raise FileNotFoundError(f"bundle: no <notebook>.json in {records}")
+    loaded = {p.stem: json.loads(p.read_text()) for p in paths}
+    members = {
+        "README.txt": README,
+        **thesis_tables(),
+        **{f"records/{p.name}": p.read_text() for p in paths},
+        **run_tables(loaded),
+    }
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name, text in members.items():
+            info = zipfile.ZipInfo(name, _STAMP)
+            info.compress_type = zipfile.ZIP_DEFLATED
+            archive.writestr(info, text)
+    return out
