@@ -21,6 +21,7 @@ import numpy as np
 from mechlib.params import check_matrix
 
 if TYPE_CHECKING:
+    from mechlib.hexflex.experiments import ModelSpec
     from mechlib.hexflex.nonlinear import NonlinearSolver
 
 
@@ -114,3 +115,26 @@ def relative_change(values: object, reference: object) -> np.ndarray:
     if np.any(top == 0):
         raise ValueError("reference must have a non-zero value in every column")
     return 100 * np.abs(v - r).max(axis=0) / top
+
+
+def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
+    """:func:`linear_poses` of the non-linear solve that ``spec`` defines (its mesh and
+    quadrature), without keeping a solver: at the model's own quadrature these are the (cached)
+    linear model's poses; at another one a solver is built for the call and let go (a Q2 solver
+    of the identified model holds gigabytes).
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        The model and quadrature of the non-linear runs to compare with.
+    forces : array_like (n, 6)
+        Actuator forces [N] within the model's bound.
+    """
+    from mechlib.hexflex.experiments import model_for
+    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.problem import QUAD_ORDER
+
+    model = model_for(spec)
+    if spec.quad_order == QUAD_ORDER:
+        return model.poses(forces)
+    return linear_poses(NonlinearSolver(model, quad_order=spec.quad_order), forces)

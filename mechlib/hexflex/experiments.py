@@ -18,7 +18,7 @@ import concurrent.futures as cf
 import functools
 import hashlib
 import json
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -83,10 +83,26 @@ class ModelSpec:
         )
 
 
-@lru_cache(maxsize=4)
 def model_for(spec: ModelSpec) -> HexFlexModel:
-    """The model of ``spec``, built once per process."""
+    """The model of ``spec``, built once per process (one model for every ``quad_order``: the
+    linear model's quadrature is fixed)."""
+    return _model(replace(spec, quad_order=QUAD_ORDER))
+
+
+@lru_cache(maxsize=4)
+def _model(spec: ModelSpec) -> HexFlexModel:
     return spec.build()
+
+
+def release_models() -> None:
+    """Forget the models and solvers this process keeps (:func:`model_for`,
+    :func:`solver_for`): a Q2 solver of the identified model holds gigabytes, so a study that
+    goes through several models releases each before building the next."""
+    import gc
+
+    solver_for.cache_clear()
+    _model.cache_clear()
+    gc.collect()
 
 
 class ExperimentError(RuntimeError):
