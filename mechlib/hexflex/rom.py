@@ -1,0 +1,388 @@
+"""A physics-based, hyper-reduced reduced-order model (ROM) of the geometrically non-linear HexFlex.
+
+Basis: the six static modes ``φ_j = K₀⁻¹ L e_j`` (the linear responses to unit actuator forces)
+and their 21 static modal derivatives ``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` (Idelsohn & Cardona 1985;
+Jain & Tiso 2017), ``N₂`` the quadratic part of the SVK internal force, which is an exact cubic:
+``N₂(x, x) = (f(x) + f(−x)) / 2`` and, by polarisation,
+``N₂(a, b) = (N₂(a+b) − N₂(a) − N₂(b)) / 2``;
+optionally augmented by a POD of converged full non-linear solutions given by the caller (the
+part of them outside the modes and derivatives); orthonormalised (Euclidean).
+
+Equilibrium: Galerkin projection ``Vᵀ(f(Vq) − L f) = 0``, solved by Newton in ``q`` from the
+linear solution. The reduced internal force is evaluated in its exact polynomial form
+(:mod:`mechlib.hexflex.rom_tensors`): the exact reduced linear stiffness ``Vᵀ K₀ V`` plus the
+cubic and quartic energy tensors summed over an ECSW sample of weighted elements
+(:mod:`mechlib.hexflex.ecsw`; or over all elements with ``hyper_reduction=False``, affordable on
+small meshes only). Poses are ``P q`` with ``P`` the model's (linear) pose fit applied to the
+basis, so the ROM's poses are fitted as the FE's. Newton runs on all force vectors at once.
+
+Measured on the identified model (192,843 DOFs, 5004 elements; ``make bench`` re-measures): see
+the notes at the end of this docstring, filled in from ``python -m mechlib.bench --only rom``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+from threadpoolctl import ThreadpoolController, threadpool_limits
+
+from mechlib.hexflex import ecsw
+from mechlib.hexflex.rom_tensors import PolynomialForce, polynomial_force
+from mechlib.params import check_float, check_int, check_matrix
+
+if TYPE_CHECKING:
+    from mechlib.hexflex.nonlinear import NonlinearSolver
+
+#: Reduced Newton stops at ‖Vᵀ(f − L F)‖ ≤ TOL ‖Vᵀ L F‖ (the polynomial is exact: round-off).
+TOL = 1e-10
+MAX_ITERATIONS = 30
+#: Load steps tried, in turn, for the force vectors whose Newton iteration did not converge.
+CONTINUATION = (4, 16)
+#: Basis vectors whose Gram–Schmidt remainder is below this fraction of their norm are dropped.
+RANK_TOL = 1e-8
+#: POD vectors whose singular value is below this fraction of the first are dropped.
+POD_TOL = 1e-6
+#: Default ECSW tolerance (relative error of the fitted non-linear reduced force per state).
+ECSW_TOL = 1e-3
+#: Default training forces for the ECSW fit (seeded, uniform in ±force_range).
+N_TRAINING = 24
+SEED = 2010
+#: One scan of the loaded BLAS libraries per process: ``threadpool_limits`` rescans them at every
+#: call (≈ 2 ms, more than a reduced solve); the online path limits BLAS through this instead.
+_BLAS = ThreadpoolController()
+
+
+@dataclass
+class ReducedOrderModel:
+    """A Galerkin ROM of one non-linear HexFlex model (build with :meth:`build`).
+
+    Attributes
+    ----------
+    basis : ndarray (n_dofs, n_basis)
+        Orthonormal reduced basis.
+    force : PolynomialForce
+        The reduced internal force (exact polynomial of the weighted elements).
+    loads : ndarray (n_basis, 6)
+        ``Vᵀ L``: reduced unit actuator loads.
+    pose_map : ndarray (6, n_basis)
+        Stage pose [µm, µrad] per reduced coordinate.
+    linear : ndarray (n_basis, 6)
+        Reduced coordinates of the linear solution per unit force.
+    second : ndarray (n_basis, 21)
+        Reduced coordinates of the second-order response per force product ``f_i f_j``, i ≤ j
+        (with ``linear``, Newton's start).
+    cells, weights : ndarray
+        The elements summed and their weights.
+    force_range : float
+        Largest |actuator force| accepted [N].
+    info : dict
+        Build timings [s], ECSW fit error, sizes.
+    """
+
+    basis: np.ndarray
+    force: PolynomialForce
+    loads: np.ndarray
+    pose_map: np.ndarray
+    linear: np.ndarray
+    second: np.ndarray
+    cells: np.ndarray
+    weights: np.ndarray
+    force_range: float
+    info: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def n_basis(self) -> int:
+        """Number of basis vectors."""
+        return self.basis.shape[1]
+
+    @property
+    def n_elements(self) -> int:
+        """Number of elements the reduced force sums."""
+        return len(self.cells)
+
+    @classmethod
+    def build(
+        cls,
+        solver: NonlinearSolver,
+        snapshots: np.ndarray | None = None,
+        *,
+        n_pod: int | None = None,
+        hyper_reduction: bool = True,
+        ecsw_tol: float = ECSW_TOL,
+        max_elements: int = 1000,
+        force_range: float = 1.0,
+        n_training: int = N_TRAINING,
+        n_third: int = 0,
+    ) -> ReducedOrderModel:
+        """Build the ROM of ``solver``'s model.
+
+        Parameters
+        ----------
+        solver : NonlinearSolver
+            The full solver (batched tangent): its model's stiffness, loads and pose fit.
+        snapshots : ndarray (n_s, n_dofs), optional
+            Converged full non-linear displacement fields [mm] to add by POD.
+        n_pod : int, optional
+            POD vectors kept from the snapshots, in [0, n_s]; default all that are independent.
+        hyper_reduction : bool
+            ECSW sample of elements (default) or all elements (exact Galerkin; its tensors cost
+            ≈ n⁴ per quadrature point: small meshes only).
+        ecsw_tol : float
+            Relative error of the fitted non-linear reduced force per training state, (0, 1).
+        max_elements : int
+            Most elements ECSW may select, ≥ 1.
+        force_range : float
+            Largest |actuator force| [N] the ROM accepts, in (0, model bound]; the ECSW training
+            forces are drawn in it.
+        n_training : int
+            ECSW training force vectors (seeded), in [1, 1000]; their second-order states, and
+            the snapshots' projections, are fitted.
+        n_third : int
+            Third-order vectors added, in [0, n_training]: the POD of the corrections
+            ``K₀⁻¹ r`` of the second-order responses ``Φ f + ½ θ(f, f)`` at the training forces
+            (``r`` their full residual: one internal force and one back-substitution a force, no
+            non-linear solve); 0 (default) adds none.
+
+        Raises
+        ------
+        ValueError, TypeError
+            On a bad argument (named, with what is allowed).
+        """
+        from mechlib.hexflex.model import MAX_FORCE_N
+
+        if solver.batched is None:
+            raise ValueError("solver must use the batched tangent (tangent='batched')")
+        if not isinstance(hyper_reduction, bool):
+            raise TypeError(f"hyper_reduction must be True or False, got {hyper_reduction!r}")
+        force_range = check_float("force_range [N]", force_range, low=0.0, high=MAX_FORCE_N)
+        if force_range == 0.0:
+            raise ValueError("force_range [N] must be > 0, got 0")
+        n_training = check_int("n_training", n_training, low=1, high=1000)
+        max_elements = check_int("max_elements", max_elements, low=1)
+        n_third = check_int("n_third", n_third, low=0, high=n_training)
+        ecsw_tol = check_float("ecsw_tol", ecsw_tol, low=0.0, high=1.0, low_open=True)
+        model, tangent = solver.model, solver.batched
+        if snapshots is not None:
+            snapshots = check_matrix("snapshots", snapshots, shape=(None, model.n_dofs))
+            n_pod = len(snapshots) if n_pod is None else n_pod
+            n_pod = check_int("n_pod", n_pod, low=0, high=len(snapshots))
+        elif n_pod is not None:
+            raise ValueError(f"n_pod = {n_pod} needs snapshots (none given)")
+        info: dict[str, float] = {}
+        with threadpool_limits(limits=1, user_api="blas"):
+            t0 = time.perf_counter()
+            modes, derivatives = static_basis(solver)
+            parts = [_unit(modes), _unit(derivatives)]
+            training = _training_forces(force_range, n_training)
+            if n_third:
+                corrections = _third_order(solver, modes, derivatives, training)
+                parts.append(_pod(orthonormal(np.hstack(parts)), corrections, n_third))
+            if snapshots is not None and n_pod:
+                parts.append(_pod(orthonormal(np.hstack(parts)), snapshots.T, n_pod))
+            basis = orthonormal(np.hstack(parts))
+            t1 = time.perf_counter()
+            info["basis_s"] = t1 - t0
+            stiffness = basis.T @ (model.assembled_stiffness() @ basis)
+            linear = basis.T @ modes
+            second = (basis.T @ derivatives) * _PRODUCT_FACTOR
+            loads = basis.T @ model.load_vectors()
+            pose_map = model.pose_of(basis)
+            if hyper_reduction:
+                states = _training_states(basis, modes, derivatives, snapshots, training)
+                contrib = ecsw.nonlinear_contributions(tangent, basis, states)
+                t2 = time.perf_counter()
+                cells, weights, error = ecsw.fit_weights(
+                    contrib, ecsw_tol, min(max_elements, contrib.shape[-1])
+                )
+                info.update(contributions_s=t2 - t1, fit_s=time.perf_counter() - t2)
+                info["ecsw_error"] = error
+            else:
+                cells = np.arange(tangent._nodes.shape[0])
+                weights = np.ones(len(cells))
+            t3 = time.perf_counter()
+            poly = polynomial_force(tangent, basis, cells, weights)
+            poly = PolynomialForce(0.5 * (stiffness + stiffness.T), poly.cubic, poly.quartic)
+            info["tensors_s"] = time.perf_counter() - t3
+            info["build_s"] = time.perf_counter() - t0
+        return cls(basis, poly, loads, pose_map, linear, second, cells, weights, force_range, info)
+
+    # online ---------------------------------------------------------------------------------
+    def check_design(self, design: object) -> np.ndarray:
+        """Force vectors as (n, 6) [N] within ``±force_range``; raises ``ValueError`` else."""
+        f = np.asarray(design, dtype=float)
+        f = check_matrix("forces [N]", f[None, :] if f.ndim == 1 else f, shape=(None, 6))
+        worst = float(np.abs(f).max(initial=0.0))
+        if worst > self.force_range:
+            raise ValueError(
+                f"forces [N] must lie in [-{self.force_range:g}, {self.force_range:g}] (the ROM's "
+                f"force_range), got |force| = {worst:g}"
+            )
+        return f
+
+    def coordinates(self, design: object) -> np.ndarray:
+        """Reduced coordinates (n, n_basis) [mm] of the equilibria under forces (n, 6) [N].
+
+        Newton from the second-order response; a force vector whose Newton iteration does not
+        converge within ``MAX_ITERATIONS`` is solved again over ``CONTINUATION`` equal load
+        steps (each from the last step's equilibrium).
+
+        Raises
+        ------
+        ValueError
+            If a force is out of range, or no continuation converges (names the force vector
+            and the residual reached).
+        """
+        f = self.check_design(design)
+        target = f @ self.loads.T
+        q = f @ self.linear.T + _products(f) @ self.second.T
+        with _BLAS.limit(limits=1, user_api="blas"):
+            residual = self._newton(q, target)
+            for steps in CONTINUATION:
+                redo = np.flatnonzero(~(residual <= TOL))  # NaN: not converged
+                if len(redo) == 0:
+                    break
+                start = np.zeros((len(redo), self.n_basis))
+                for k in range(1, steps + 1):
+                    left = self._newton(start, target[redo] * (k / steps))
+                residual[redo] = left
+                q[redo] = start
+        failed = np.flatnonzero(~(residual <= TOL))
+        if len(failed):
+            bad = int(failed[0])
+            raise ValueError(
+                f"reduced Newton did not converge in {MAX_ITERATIONS} iterations (nor over "
+                f"{CONTINUATION} load steps) for forces [N] {f[bad].tolist()} (relative "
+                f"residual {residual[bad]:.1e} > {TOL:g}); {len(failed)} of {len(f)} failed"
+            )
+        return q
+
+    def _newton(self, q: np.ndarray, target: np.ndarray) -> np.ndarray:
+        """Newton iterations on every row of ``q`` (updated in place) towards ``target``;
+        returns the relative residuals reached (NaN where the iteration blew up)."""
+        scale = np.linalg.norm(target, axis=1)
+        scale[scale == 0.0] = 1.0  # zero load: q = 0 is exact
+        relative = np.full(len(q), np.nan)
+        k = self.force.stiffness
+        todo = np.arange(len(q))
+        for _ in range(MAX_ITERATIONS + 1):
+            bq, zc = self.force.terms(q[todo])
+            res = q[todo] @ k + ((3.0 * bq + 2.0 * zc) @ q[todo][:, :, None])[:, :, 0]
+            res -= target[todo]
+            relative[todo] = np.linalg.norm(res, axis=1) / scale[todo]
+            going = ~(relative[todo] <= TOL) & np.isfinite(relative[todo])
+            if not going.any():
+                break
+            todo, res = todo[going], res[going]
+            jac = k + 6.0 * (bq[going] + zc[going])
+            q[todo] -= np.linalg.solve(jac, res[..., None])[..., 0]
+        return relative
+
+    def poses(self, design: object) -> np.ndarray:
+        """Stage poses (n, 6) [µm, µrad] under actuator forces (n, 6) [N] (see
+        :meth:`coordinates`)."""
+        return self.coordinates(design) @ self.pose_map.T
+
+    def displacement(self, forces: object) -> np.ndarray:
+        """Reduced displacement vector (n_dofs,) [mm] under one force vector (6,) [N]."""
+        f = np.asarray(forces, dtype=float)
+        if f.shape != (6,):
+            raise ValueError(f"forces must have shape (6,), got {f.shape}")
+        return self.basis @ self.coordinates(f)[0]
+
+
+_PAIR_I, _PAIR_J = np.triu_indices(6)
+#: ½ f_i² θ_ii and f_i f_j θ_ij (i < j): the second-order term ½ Σ_ij f_i f_j θ_ij on pairs i ≤ j
+_PRODUCT_FACTOR = np.where(_PAIR_I == _PAIR_J, 0.5, 1.0)
+
+
+def _products(forces: np.ndarray) -> np.ndarray:
+    """Force products ``f_i f_j``, i ≤ j (n, 21)."""
+    return forces[:, _PAIR_I] * forces[:, _PAIR_J]
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    return vectors / np.linalg.norm(vectors, axis=0)
+
+
+def static_basis(solver: NonlinearSolver) -> tuple[np.ndarray, np.ndarray]:
+    """Static modes (n_dofs, 6) [mm/N] and modal derivatives (n_dofs, 21) [mm/N²], i ≤ j.
+
+    ``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` of the unit-force modes, ``N₂`` from 4 + 2 internal-force
+    evaluations per pair (by polarisation of the exact cubic), one multi-vector solve.
+    """
+    model, fint = solver.model, solver.batched.internal_force
+    phi = model.back_substitute(model.load_vectors())
+
+    def quadratic(x: np.ndarray) -> np.ndarray:
+        plus, minus = fint(x), fint(-x)
+        if plus is None or minus is None:
+            raise ValueError("a static mode inverts an element: no modal derivative")
+        return 0.5 * (plus + minus)
+
+    diag = [quadratic(phi[:, i]) for i in range(6)]
+    rhs = []
+    for i in range(6):
+        for j in range(i, 6):
+            if i == j:
+                n2 = diag[i]
+            else:
+                n2 = 0.5 * (quadratic(phi[:, i] + phi[:, j]) - diag[i] - diag[j])
+            rhs.append(-2.0 * n2)
+    theta = model.back_substitute(np.stack(rhs, axis=1))
+    return phi, theta
+
+
+def orthonormal(vectors: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the columns (in order; twice-iterated Gram–Schmidt by QR), dropping
+    columns whose remainder is below ``RANK_TOL`` of their norm."""
+    q, r = np.linalg.qr(vectors)
+    norms = np.linalg.norm(vectors, axis=0)
+    keep = np.abs(np.diag(r)) > RANK_TOL * norms
+    q = q[:, keep]
+    q, r = np.linalg.qr(q)  # re-orthogonalise
+    return q * np.sign(np.diag(r))
+
+
+def _pod(basis: np.ndarray, snapshots: np.ndarray, n_pod: int) -> np.ndarray:
+    """The ``n_pod`` leading POD vectors of the snapshots' (unit-norm columns) part outside
+    ``basis``."""
+    x = snapshots / np.linalg.norm(snapshots, axis=0)
+    x = x - basis @ (basis.T @ x)
+    u, s, _ = np.linalg.svd(x, full_matrices=False)
+    n_pod = min(n_pod, int(np.count_nonzero(s > POD_TOL * s[0])))
+    return u[:, :n_pod]
+
+
+def _training_forces(force_range: float, n_training: int) -> np.ndarray:
+    """Seeded training force vectors (n_training, 6) [N], uniform in ±force_range."""
+    return np.random.default_rng(SEED).uniform(-force_range, force_range, (n_training, 6))
+
+
+def _third_order(solver, modes, derivatives, forces) -> np.ndarray:
+    """``K₀⁻¹ r`` (n_dofs, n) of the second-order responses at ``forces``: ≈ minus their
+    third-order terms ``−K₀⁻¹ (2 N₂(u₁, u₂) + N₃(u₁))``."""
+    model = solver.model
+    second = modes @ forces.T + derivatives @ (_products(forces) * _PRODUCT_FACTOR).T
+    loads = model.load_vectors() @ forces.T
+    residuals = np.empty_like(second)
+    for k in range(len(forces)):
+        res = solver.residual(second[:, k], loads[:, k])
+        if res is None:
+            raise ValueError(
+                f"the second-order response to {forces[k].tolist()} N inverts an element"
+            )
+        residuals[:, k] = res
+    return model.back_substitute(residuals)
+
+
+def _training_states(basis, modes, derivatives, snapshots, forces):
+    """Reduced states the ECSW weights are fitted on: the second-order static response
+    ``Φ f + ½ Σ_ij f_i f_j θ_ij`` at the training forces, and the snapshots."""
+    second = (basis.T @ derivatives) * _PRODUCT_FACTOR
+    states = forces @ (basis.T @ modes).T + _products(forces) @ second.T
+    if snapshots is not None:
+        states = np.vstack([states, snapshots @ basis])
+    return states
