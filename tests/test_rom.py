@@ -147,6 +147,13 @@ def test_two_builds_are_bit_identical(solver: NonlinearSolver, hyper: rm.Reduced
     np.testing.assert_array_equal(again.displacement(f[0]), hyper.displacement(f[0]))
 
 
+def test_one_pose_at_a_time_equals_the_batch(hyper: rm.ReducedOrderModel) -> None:
+    f = _forces(4, RANGE, seed=13)
+    batch = hyper.poses(f)
+    single = np.vstack([hyper.poses(x) for x in f])
+    assert np.abs(single - batch).max() < 1e-10 * np.abs(batch).max()
+
+
 def test_snapshots_add_pod_vectors(solver: NonlinearSolver) -> None:
     f = _forces(2, RANGE, seed=5)
     snaps = np.array([solver.solve(x)[0] for x in f])
@@ -180,6 +187,10 @@ def test_bad_input_is_refused(
         rm.ReducedOrderModel.build(solver, np.zeros((2, 10)))
     with pytest.raises(TypeError):
         rm.ReducedOrderModel.build(solver, method="deim")  # unknown option
+    with pytest.raises(TypeError, match="modal_derivatives"):
+        rm.ReducedOrderModel.build(solver, modal_derivatives="yes")
+    with pytest.raises(ValueError, match="n_third"):
+        rm.ReducedOrderModel.build(solver, n_third=30, n_training=12)
     monkeypatch.setattr(rm, "MAX_ITERATIONS", 1)
     with pytest.raises(ValueError, match="did not converge in 1 iterations"):
         hyper.poses(_forces(1, RANGE))

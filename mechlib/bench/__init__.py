@@ -18,6 +18,8 @@
   Cholesky), one residual and one back-substitution; and the Newton–Krylov alternative: GMRES
   iterations, preconditioned by the factorised linear stiffness (a whole solve on the first run:
   Newton corrections, GMRES iterations, time).
+- The hyper-reduced ROM of the non-linear HexFlex (:mod:`mechlib.bench.rom`): its online cost
+  per pose against one full non-linear run, as a ratio measured in one run, and its pose error.
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
@@ -134,6 +136,7 @@ SECTIONS: tuple[str, ...] = (
     "nonlinear",
     "chapter",
     "calibration",
+    "rom",
 )
 
 
@@ -164,6 +167,10 @@ def main(argv: list[str] | None = None) -> int:
         nlb.print_chapter()
     if "calibration" in only:
         _print_calibration()
+    if "rom" in only:
+        from mechlib.bench import rom
+
+        rom.print_rom()
     return 0
 
 

@@ -116,6 +116,7 @@ class ReducedOrderModel:
         force_range: float = 1.0,
         n_training: int = N_TRAINING,
         n_third: int = 0,
+        modal_derivatives: bool = True,
     ) -> ReducedOrderModel:
         """Build the ROM of ``solver``'s model.
 
@@ -145,6 +146,10 @@ class ReducedOrderModel:
             ``K₀⁻¹ r`` of the second-order responses ``Φ f + ½ θ(f, f)`` at the training forces
             (``r`` their full residual: one internal force and one back-substitution a force, no
             non-linear solve); 0 (default) adds none.
+        modal_derivatives : bool
+            Keep the 21 modal derivatives in the basis (default); without them the basis is
+            the static modes and the POD vectors (the derivatives still give Newton's start and
+            the ECSW training states).
 
         Raises
         ------
@@ -155,8 +160,12 @@ class ReducedOrderModel:
 
         if solver.batched is None:
             raise ValueError("solver must use the batched tangent (tangent='batched')")
-        if not isinstance(hyper_reduction, bool):
-            raise TypeError(f"hyper_reduction must be True or False, got {hyper_reduction!r}")
+        for name, flag in (
+            ("hyper_reduction", hyper_reduction),
+            ("modal_derivatives", modal_derivatives),
+        ):
+            if not isinstance(flag, bool):
+                raise TypeError(f"{name} must be True or False, got {flag!r}")
         force_range = check_float("force_range [N]", force_range, low=0.0, high=MAX_FORCE_N)
         if force_range == 0.0:
             raise ValueError("force_range [N] must be > 0, got 0")
@@ -175,7 +184,7 @@ class ReducedOrderModel:
         with threadpool_limits(limits=1, user_api="blas"):
             t0 = time.perf_counter()
             modes, derivatives = static_basis(solver)
-            parts = [_unit(modes), _unit(derivatives)]
+            parts = [_unit(modes)] + ([_unit(derivatives)] if modal_derivatives else [])
             training = _training_forces(force_range, n_training)
             if n_third:
                 corrections = _third_order(solver, modes, derivatives, training)

@@ -21,7 +21,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.linalg.blas import dsyrk
+from scipy.linalg.blas import dsymv, dsyrk
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex.ecsw import element_basis
@@ -57,6 +57,7 @@ class PolynomialForce:
         full[self._ju, self._iu] = full[self._iu, self._ju]
         self._full = full.ravel()
         self._mult = np.where(self._iu == self._ju, 1.0, 2.0)
+        self._quartic_f = np.asfortranarray(quartic)
 
     @property
     def size(self) -> int:
@@ -67,7 +68,11 @@ class PolynomialForce:
         """``b(q,·,·)`` and ``c(q,q,·,·)`` for a stack of states ``q`` (N, n): two (N, n, n)."""
         n = self.size
         pairs = (q[:, self._iu] * q[:, self._ju]) * self._mult
-        zc = (pairs @ self.quartic)[:, self._full].reshape(len(q), n, n)
+        if len(q) == 1:  # a symmetric product reads half the matrix: ≈ 2× faster (measured)
+            packed = dsymv(1.0, self._quartic_f, pairs[0])[None]
+        else:
+            packed = pairs @ self.quartic
+        zc = packed[:, self._full].reshape(len(q), n, n)
         bq = (q @ self.cubic).reshape(len(q), n, n)
         return bq, zc
 
