@@ -6,6 +6,7 @@ from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import m
 
 from mechlib.hexflex import ecsw
 from mechlib.hexflex import rom as rm
+from mechlib.hexflex import rom_basis as rb
 from mechlib.hexflex.model import HexFlexModel
 from mechlib.hexflex.nonlinear import NonlinearSolver
 
@@ -46,7 +47,7 @@ def test_basis_is_orthonormal_and_holds_the_static_modes(
     v = galerkin.basis
     assert galerkin.n_basis == 27  # 6 modes + 21 derivatives, independent on this model
     assert np.abs(v.T @ v - np.eye(galerkin.n_basis)).max() < 1e-13
-    modes, derivatives = rm.static_basis(solver)
+    modes, derivatives = rb.static_basis(solver)
     for vectors in (modes, derivatives):
         outside = vectors - v @ (v.T @ vectors)
         assert (np.linalg.norm(outside, axis=0) / np.linalg.norm(vectors, axis=0)).max() < 1e-10
@@ -104,9 +105,9 @@ def _parts(force, q: np.ndarray, stiffness: np.ndarray) -> tuple[np.ndarray, np.
 def test_ecsw_weights_reproduce_the_reduced_force_on_training_states(
     solver: NonlinearSolver, galerkin: rm.ReducedOrderModel, hyper: rm.ReducedOrderModel
 ) -> None:
-    modes, derivatives = rm.static_basis(solver)
-    forces = rm._training_forces(RANGE, 12)
-    states = rm._training_states(hyper.basis, modes, derivatives, None, forces)
+    modes, derivatives = rb.static_basis(solver)
+    forces = rb.training_forces(RANGE, 12)
+    states = rb.training_states(hyper.basis, modes, derivatives, None, forces)
     v = hyper.basis
 
     def exact(q: np.ndarray) -> np.ndarray:

@@ -30,8 +30,9 @@ import numpy as np
 from threadpoolctl import ThreadpoolController, threadpool_limits
 
 from mechlib.hexflex import ecsw
+from mechlib.hexflex import rom_basis as rb
 from mechlib.hexflex.rom_tensors import PolynomialForce, polynomial_force
-from mechlib.params import check_float, check_int, check_matrix
+from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 if TYPE_CHECKING:
     from mechlib.hexflex.nonlinear import NonlinearSolver
@@ -41,15 +42,11 @@ TOL = 1e-10
 MAX_ITERATIONS = 30
 #: Load steps tried, in turn, for the force vectors whose Newton iteration did not converge.
 CONTINUATION = (4, 16)
-#: Basis vectors whose Gram–Schmidt remainder is below this fraction of their norm are dropped.
-RANK_TOL = 1e-8
-#: POD vectors whose singular value is below this fraction of the first are dropped.
-POD_TOL = 1e-6
+POD_INNER: tuple[str, ...] = ("energy", "euclidean")
 #: Default ECSW tolerance (relative error of the fitted non-linear reduced force per state).
-ECSW_TOL = 1e-3
+ECSW_TOL = 1e-6
 #: Default training forces for the ECSW fit (seeded, uniform in ±force_range).
 N_TRAINING = 24
-SEED = 2010
 #: One scan of the loaded BLAS libraries per process: ``threadpool_limits`` rescans them at every
 #: call (≈ 2 ms, more than a reduced solve); the online path limits BLAS through this instead.
 _BLAS = ThreadpoolController()
@@ -117,6 +114,7 @@ class ReducedOrderModel:
         n_training: int = N_TRAINING,
         n_third: int = 0,
         modal_derivatives: bool = True,
+        pod_inner: str = "energy",
     ) -> ReducedOrderModel:
         """Build the ROM of ``solver``'s model.
 
@@ -150,6 +148,9 @@ class ReducedOrderModel:
             Keep the 21 modal derivatives in the basis (default); without them the basis is
             the static modes and the POD vectors (the derivatives still give Newton's start and
             the ECSW training states).
+        pod_inner : {"energy", "euclidean"}
+            Inner product of the POD (snapshots and third-order vectors): the energy one
+            ``xᵀ K₀ y`` (default) or the Euclidean one.
 
         Raises
         ------
@@ -172,6 +173,7 @@ class ReducedOrderModel:
         n_training = check_int("n_training", n_training, low=1, high=1000)
         max_elements = check_int("max_elements", max_elements, low=1)
         n_third = check_int("n_third", n_third, low=0, high=n_training)
+        pod_inner = check_choice("pod_inner", pod_inner, POD_INNER)
         ecsw_tol = check_float("ecsw_tol", ecsw_tol, low=0.0, high=1.0, low_open=True)
         model, tangent = solver.model, solver.batched
         if snapshots is not None:
@@ -183,24 +185,25 @@ class ReducedOrderModel:
         info: dict[str, float] = {}
         with threadpool_limits(limits=1, user_api="blas"):
             t0 = time.perf_counter()
-            modes, derivatives = static_basis(solver)
-            parts = [_unit(modes)] + ([_unit(derivatives)] if modal_derivatives else [])
-            training = _training_forces(force_range, n_training)
+            modes, derivatives = rb.static_basis(solver)
+            parts = [rb.unit(modes)] + ([rb.unit(derivatives)] if modal_derivatives else [])
+            training = rb.training_forces(force_range, n_training)
+            energy = model.assembled_stiffness() if pod_inner == "energy" else None
             if n_third:
-                corrections = _third_order(solver, modes, derivatives, training)
-                parts.append(_pod(orthonormal(np.hstack(parts)), corrections, n_third))
+                corrections = rb.third_order(solver, modes, derivatives, training)
+                parts.append(rb.pod(rb.orthonormal(np.hstack(parts)), corrections, n_third, energy))
             if snapshots is not None and n_pod:
-                parts.append(_pod(orthonormal(np.hstack(parts)), snapshots.T, n_pod))
-            basis = orthonormal(np.hstack(parts))
+                parts.append(rb.pod(rb.orthonormal(np.hstack(parts)), snapshots.T, n_pod, energy))
+            basis = rb.orthonormal(np.hstack(parts))
             t1 = time.perf_counter()
             info["basis_s"] = t1 - t0
             stiffness = basis.T @ (model.assembled_stiffness() @ basis)
             linear = basis.T @ modes
-            second = (basis.T @ derivatives) * _PRODUCT_FACTOR
+            second = (basis.T @ derivatives) * rb.PRODUCT_FACTOR
             loads = basis.T @ model.load_vectors()
             pose_map = model.pose_of(basis)
             if hyper_reduction:
-                states = _training_states(basis, modes, derivatives, snapshots, training)
+                states = rb.training_states(basis, modes, derivatives, snapshots, training)
                 contrib = ecsw.nonlinear_contributions(tangent, basis, states)
                 t2 = time.perf_counter()
                 cells, weights, error = ecsw.fit_weights(
@@ -246,7 +249,7 @@ class ReducedOrderModel:
         """
         f = self.check_design(design)
         target = f @ self.loads.T
-        q = f @ self.linear.T + _products(f) @ self.second.T
+        q = f @ self.linear.T + rb.products(f) @ self.second.T
         with _BLAS.limit(limits=1, user_api="blas"):
             residual = self._newton(q, target)
             for steps in CONTINUATION:
@@ -300,98 +303,3 @@ class ReducedOrderModel:
         if f.shape != (6,):
             raise ValueError(f"forces must have shape (6,), got {f.shape}")
         return self.basis @ self.coordinates(f)[0]
-
-
-_PAIR_I, _PAIR_J = np.triu_indices(6)
-#: ½ f_i² θ_ii and f_i f_j θ_ij (i < j): the second-order term ½ Σ_ij f_i f_j θ_ij on pairs i ≤ j
-_PRODUCT_FACTOR = np.where(_PAIR_I == _PAIR_J, 0.5, 1.0)
-
-
-def _products(forces: np.ndarray) -> np.ndarray:
-    """Force products ``f_i f_j``, i ≤ j (n, 21)."""
-    return forces[:, _PAIR_I] * forces[:, _PAIR_J]
-
-
-def _unit(vectors: np.ndarray) -> np.ndarray:
-    return vectors / np.linalg.norm(vectors, axis=0)
-
-
-def static_basis(solver: NonlinearSolver) -> tuple[np.ndarray, np.ndarray]:
-    """Static modes (n_dofs, 6) [mm/N] and modal derivatives (n_dofs, 21) [mm/N²], i ≤ j.
-
-    ``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` of the unit-force modes, ``N₂`` from 4 + 2 internal-force
-    evaluations per pair (by polarisation of the exact cubic), one multi-vector solve.
-    """
-    model, fint = solver.model, solver.batched.internal_force
-    phi = model.back_substitute(model.load_vectors())
-
-    def quadratic(x: np.ndarray) -> np.ndarray:
-        plus, minus = fint(x), fint(-x)
-        if plus is None or minus is None:
-            raise ValueError("a static mode inverts an element: no modal derivative")
-        return 0.5 * (plus + minus)
-
-    diag = [quadratic(phi[:, i]) for i in range(6)]
-    rhs = []
-    for i in range(6):
-        for j in range(i, 6):
-            if i == j:
-                n2 = diag[i]
-            else:
-                n2 = 0.5 * (quadratic(phi[:, i] + phi[:, j]) - diag[i] - diag[j])
-            rhs.append(-2.0 * n2)
-    theta = model.back_substitute(np.stack(rhs, axis=1))
-    return phi, theta
-
-
-def orthonormal(vectors: np.ndarray) -> np.ndarray:
-    """Orthonormal basis of the columns (in order; twice-iterated Gram–Schmidt by QR), dropping
-    columns whose remainder is below ``RANK_TOL`` of their norm."""
-    q, r = np.linalg.qr(vectors)
-    norms = np.linalg.norm(vectors, axis=0)
-    keep = np.abs(np.diag(r)) > RANK_TOL * norms
-    q = q[:, keep]
-    q, r = np.linalg.qr(q)  # re-orthogonalise
-    return q * np.sign(np.diag(r))
-
-
-def _pod(basis: np.ndarray, snapshots: np.ndarray, n_pod: int) -> np.ndarray:
-    """The ``n_pod`` leading POD vectors of the snapshots' (unit-norm columns) part outside
-    ``basis``."""
-    x = snapshots / np.linalg.norm(snapshots, axis=0)
-    x = x - basis @ (basis.T @ x)
-    u, s, _ = np.linalg.svd(x, full_matrices=False)
-    n_pod = min(n_pod, int(np.count_nonzero(s > POD_TOL * s[0])))
-    return u[:, :n_pod]
-
-
-def _training_forces(force_range: float, n_training: int) -> np.ndarray:
-    """Seeded training force vectors (n_training, 6) [N], uniform in ±force_range."""
-    return np.random.default_rng(SEED).uniform(-force_range, force_range, (n_training, 6))
-
-
-def _third_order(solver, modes, derivatives, forces) -> np.ndarray:
-    """``K₀⁻¹ r`` (n_dofs, n) of the second-order responses at ``forces``: ≈ minus their
-    third-order terms ``−K₀⁻¹ (2 N₂(u₁, u₂) + N₃(u₁))``."""
-    model = solver.model
-    second = modes @ forces.T + derivatives @ (_products(forces) * _PRODUCT_FACTOR).T
-    loads = model.load_vectors() @ forces.T
-    residuals = np.empty_like(second)
-    for k in range(len(forces)):
-        res = solver.residual(second[:, k], loads[:, k])
-        if res is None:
-            raise ValueError(
-                f"the second-order response to {forces[k].tolist()} N inverts an element"
-            )
-        residuals[:, k] = res
-    return model.back_substitute(residuals)
-
-
-def _training_states(basis, modes, derivatives, snapshots, forces):
-    """Reduced states the ECSW weights are fitted on: the second-order static response
-    ``Φ f + ½ Σ_ij f_i f_j θ_ij`` at the training forces, and the snapshots."""
-    second = (basis.T @ derivatives) * _PRODUCT_FACTOR
-    states = forces @ (basis.T @ modes).T + _products(forces) @ second.T
-    if snapshots is not None:
-        states = np.vstack([states, snapshots @ basis])
-    return states
