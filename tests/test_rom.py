@@ -148,6 +148,14 @@ def test_two_builds_are_bit_identical(solver: NonlinearSolver, hyper: rm.Reduced
     np.testing.assert_array_equal(again.displacement(f[0]), hyper.displacement(f[0]))
 
 
+def test_equilibrium_solves_the_reduced_equations(hyper: rm.ReducedOrderModel) -> None:
+    f = _forces(5, RANGE, seed=17)
+    q = hyper.coordinates(f)
+    load = f @ hyper.loads.T
+    residual = hyper.force.force(q) - load
+    assert (np.linalg.norm(residual, axis=1) / np.linalg.norm(load, axis=1)).max() < 1e-9
+
+
 def test_one_pose_at_a_time_equals_the_batch(hyper: rm.ReducedOrderModel) -> None:
     f = _forces(4, RANGE, seed=13)
     batch = hyper.poses(f)
