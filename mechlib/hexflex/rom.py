@@ -180,6 +180,13 @@ class ReducedOrderModel:
             Inner product of the POD (snapshots and third-order vectors): the energy one
             ``xᵀ K₀ y`` (default) or the Euclidean one.
 
+        Returns
+        -------
+        ReducedOrderModel
+            With ``info``: build timings [s] (``basis_s``, ``contributions_s``, ``fit_s``,
+            ``tensors_s``, ``build_s``) and the ECSW fit's largest relative error
+            (``ecsw_error``).
+
         Raises
         ------
         ValueError, TypeError
@@ -269,6 +276,11 @@ class ReducedOrderModel:
         converge within ``MAX_ITERATIONS`` is solved again over ``CONTINUATION`` equal load
         steps (each from the last step's equilibrium).
 
+        Parameters
+        ----------
+        design : array_like (n, 6) or (6,)
+            Actuator forces [N], within ``±force_range``.
+
         Raises
         ------
         ValueError
@@ -333,12 +345,14 @@ class ReducedOrderModel:
         return relative
 
     def poses(self, design: object) -> np.ndarray:
-        """Stage poses (n, 6) [µm, µrad] under actuator forces (n, 6) [N] (see
-        :meth:`coordinates`)."""
+        """Stage poses (n, 6) [µm, µrad] under actuator forces ``design`` (n, 6) or (6,) [N]:
+        the model's pose fit of ``V q``, precomputed on the basis; raises as
+        :meth:`coordinates`."""
         return self.coordinates(design) @ self.pose_map.T
 
     def displacement(self, forces: object) -> np.ndarray:
-        """Reduced displacement vector (n_dofs,) [mm] under one force vector (6,) [N]."""
+        """Reduced displacement vector ``V q`` (n_dofs,) [mm] under one force vector (6,) [N];
+        raises ``ValueError`` on another shape, and as :meth:`coordinates`."""
         f = np.asarray(forces, dtype=float)
         if f.shape != (6,):
             raise ValueError(f"forces must have shape (6,), got {f.shape}")
