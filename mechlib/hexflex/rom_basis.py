@@ -26,6 +26,26 @@ _PAIR_I, _PAIR_J = np.triu_indices(6)
 PRODUCT_FACTOR = np.where(_PAIR_I == _PAIR_J, 0.5, 1.0)
 
 
+_TRIPLES = np.array(
+    [(i, j, k) for i in range(6) for j in range(i, 6) for k in range(j, 6)], dtype=np.int64
+).T
+#: Monomials of the six forces of degree 1 to 3: f_i, f_i f_j (i ≤ j), f_i f_j f_k (i ≤ j ≤ k)
+#: (no constant: zero forces give exactly zero).
+N_MONOMIALS = 6 + 21 + 56
+
+
+def monomials(forces: np.ndarray) -> np.ndarray:
+    """The force monomials (n, 83) of degree 1 to 3, in the order of ``N_MONOMIALS``."""
+    i, j, k = _TRIPLES
+    return np.hstack(
+        [
+            forces,
+            products(forces),
+            forces[:, i] * forces[:, j] * forces[:, k],
+        ]
+    )
+
+
 def products(forces: np.ndarray) -> np.ndarray:
     """Force products ``f_i f_j``, i ≤ j (n, 21)."""
     return forces[:, _PAIR_I] * forces[:, _PAIR_J]
@@ -95,9 +115,9 @@ def pod(basis: np.ndarray, snapshots: np.ndarray, n_pod: int, stiffness=None) ->
     return x @ (vectors[:, :n_pod] / np.sqrt(values[:n_pod]))
 
 
-def training_forces(force_range: float, n_training: int) -> np.ndarray:
+def training_forces(force_range: float, n_training: int, seed: int = SEED) -> np.ndarray:
     """Seeded training force vectors (n_training, 6) [N], uniform in ±force_range."""
-    return np.random.default_rng(SEED).uniform(-force_range, force_range, (n_training, 6))
+    return np.random.default_rng(seed).uniform(-force_range, force_range, (n_training, 6))
 
 
 def third_order(solver, modes, derivatives, forces) -> np.ndarray:
