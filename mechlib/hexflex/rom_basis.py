@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 import numpy as np
+import scipy.sparse as sp
 
 if TYPE_CHECKING:
     from mechlib.hexflex.nonlinear import NonlinearSolver
@@ -52,6 +53,7 @@ def products(forces: np.ndarray) -> np.ndarray:
 
 
 def unit(vectors: np.ndarray) -> np.ndarray:
+    """The columns scaled to unit Euclidean norm."""
     return vectors / np.linalg.norm(vectors, axis=0)
 
 
@@ -94,7 +96,12 @@ def orthonormal(vectors: np.ndarray) -> np.ndarray:
     return q * np.sign(np.diag(r))
 
 
-def pod(basis: np.ndarray, snapshots: np.ndarray, n_pod: int, stiffness=None) -> np.ndarray:
+def pod(
+    basis: np.ndarray,
+    snapshots: np.ndarray,
+    n_pod: int,
+    stiffness: sp.sparray | sp.spmatrix | None = None,
+) -> np.ndarray:
     """The ``n_pod`` leading POD vectors of the snapshots' part outside ``basis`` (columns
     scaled to unit norm): in the Euclidean inner product, or with ``stiffness`` in the energy
     one (``xᵀ K₀ y``, by the method of snapshots), which ranks a part by the strain energy it
@@ -120,7 +127,9 @@ def training_forces(force_range: float, n_training: int, seed: int = SEED) -> np
     return np.random.default_rng(seed).uniform(-force_range, force_range, (n_training, 6))
 
 
-def third_order(solver, modes, derivatives, forces) -> np.ndarray:
+def third_order(
+    solver: NonlinearSolver, modes: np.ndarray, derivatives: np.ndarray, forces: np.ndarray
+) -> np.ndarray:
     """``K₀⁻¹ r`` (n_dofs, n) of the second-order responses at ``forces``: ≈ minus their
     third-order terms ``−K₀⁻¹ (2 N₂(u₁, u₂) + N₃(u₁))``."""
     model = solver.model
@@ -137,7 +146,13 @@ def third_order(solver, modes, derivatives, forces) -> np.ndarray:
     return model.back_substitute(residuals)
 
 
-def training_states(basis, modes, derivatives, snapshots, forces):
+def training_states(
+    basis: np.ndarray,
+    modes: np.ndarray,
+    derivatives: np.ndarray,
+    snapshots: np.ndarray | None,
+    forces: np.ndarray,
+) -> np.ndarray:
     """Reduced states the ECSW weights are fitted on: the second-order static response
     ``Φ f + ½ Σ_ij f_i f_j θ_ij`` at the training forces, and the snapshots."""
     second = (basis.T @ derivatives) * PRODUCT_FACTOR
