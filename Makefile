@@ -149,7 +149,7 @@ references: $(EXECUTED)
 # the non-linear and chapter sections time the geometry the HexFlex notebook identifies (its
 # record); without it they would fall back to the bench geometry, a different model
 comma := ,
-BENCH_ON_MODEL := $(if $(ONLY),$(filter nonlinear chapter reuse,$(subst $(comma), ,$(ONLY))),all)
+BENCH_ON_MODEL := $(if $(ONLY),$(filter nonlinear chapter reuse rom,$(subst $(comma), ,$(ONLY))),all)
 bench: $(STAMP) $(if $(BENCH_ON_MODEL),$(BUILD)/executed/hexflex_model.ipynb)
 	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(PY) -m mechlib.bench $(if $(ONLY),--only $(ONLY))
 

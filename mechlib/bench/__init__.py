@@ -21,6 +21,8 @@
 - Reusing one factorised tangent across runs (:mod:`mechlib.bench.reuse`): chord iterations
   with the tangent of a neighbouring equilibrium, at growing distances in force space, and the
   nearest-neighbour distances of random designs.
+- The hyper-reduced ROM of the non-linear HexFlex (:mod:`mechlib.bench.rom`): its online cost
+  per pose against one full non-linear run, as a ratio measured in one run, and its pose error.
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
@@ -138,6 +140,7 @@ SECTIONS: tuple[str, ...] = (
     "chapter",
     "reuse",
     "calibration",
+    "rom",
 )
 
 
@@ -172,6 +175,10 @@ def main(argv: list[str] | None = None) -> int:
         print_reuse()
     if "calibration" in only:
         _print_calibration()
+    if "rom" in only:
+        from mechlib.bench import rom
+
+        rom.print_rom()
     return 0
 
 
