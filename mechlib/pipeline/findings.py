@@ -1,0 +1,137 @@
+"""The main findings the landing page states: each a sentence quoting recorded values.
+
+:class:`Finding` ties a sentence to the records it quotes and to the report row it rests on;
+:data:`FINDINGS` lists them in reading order (:mod:`mechlib.pipeline.landing` writes them).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from mechlib import categories as cat
+
+#: A recorded value: (notebook, record key, index into the value, or "max"/"min" of it, or None).
+Quote = tuple[str, str, int | tuple[int, ...] | str | None]
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A main finding: one sentence quoting recorded values, linked to its evidence.
+
+    Attributes
+    ----------
+    title : str
+        A few words, shown in bold.
+    text : str
+        The sentence, a ``str.format`` template whose fields are the names of ``values``.
+    values : mapping of str to Quote
+        The recorded values the sentence quotes.
+    row : (notebook, artefact, start of the quantity)
+        The report row the sentence rests on.
+    shown_if : tuple of str
+        The categories of that row for which ``text`` is true.
+    otherwise : (title, text)
+        Title and sentence for any other category (empty: the finding is left out).
+    holds : bool, optional
+        Also required of the row: that its values agree or its claim holds (True) or not
+        (False); a finding of ours has one category whether it holds or not.
+    evidence : (page, what)
+        Where the book shows the evidence (a chapter page and the artefact its section names).
+    """
+
+    title: str
+    text: str
+    values: Mapping[str, Quote]
+    row: tuple[str, str, str]
+    shown_if: tuple[str, ...]
+    evidence: tuple[str, str]
+    otherwise: tuple[str, str] = ("", "")
+    holds: bool | None = None
+
+
+_THESIS_ERROR = (cat.CAT_DIVERGES, cat.CAT_INCONSISTENT)
+#: The findings the landing page states, in reading order (their numbers come from the records).
+FINDINGS: tuple[Finding, ...] = (
+    Finding(
+        "The screening tables carry printing errors.",
+        "Table 2 is printed in nm and mrad although its header says µm and µrad (its x column is "
+        "{ratio_x:.1f} times what Eq 8 predicts in µm), and Table 3's summary rows contradict its "
+        "own effects (the median |effect| of x is {nu_x:.0f} nm, not the θx value printed there).",
+        {
+            "ratio_x": ("published_doe", "units.table2_over_eq8", 0),
+            "nu_x": ("published_doe", "table3.lenth_nu", 0),
+        },
+        ("published_doe", "Table 2", "unit ratio"),
+        _THESIS_ERROR,
+        ("published_doe", "Table 3"),
+    ),
+    Finding(
+        "Eq 8 was fitted to Table 2, not to Table 4.",
+        "A linear fit to the screening runs of Table 2 gives Eq 8's entries to {t2:.1e} relative; "
+        "a fit to the uniform design of Table 4, the data the text names, misses them by up to "
+        "{t4:.2%}.",
+        {
+            "t2": ("published_doe", "eq8.max_rel_diff_nonzero", 2),
+            "t4": ("published_doe", "eq8.max_rel_diff_nonzero", 0),
+        },
+        ("published_doe", "Eq 8", "S_T vs OLS fit to Table 4"),
+        _THESIS_ERROR,
+        ("published_doe", "Eq 8"),
+    ),
+    Finding(
+        "Table 5 looks like a linear analysis (our reading).",
+        "On our FE model, which has Eq 8's compliance, the linear meta-model misses the "
+        "geometrically non-linear solution by {nl_lo:.2g} to {nl_hi:.3g} % of each pose "
+        "component's range over {runs:.0f} random runs at ±1 N; Table 5's published errors are "
+        "at most {pub:.1e} % of the ranges. On members of the family of parts with Eq 8's "
+        "compliance with plates from {t_thin:.2g} to {t_thick:.2g} mm the worst departure is "
+        "{fam_lo:.3g} to {fam_hi:.3g} % over {fam_runs:.0f} runs each, and a finer mesh or more "
+        "Gauss points change "
+        "it by at most {mesh:.2g} % of itself. We read the gap as evidence that the thesis's "
+        "validation runs were linear analyses; thicker plates cannot have Eq 8's compliance "
+        "with this layout, and other layouts are not tested.",
+        {
+            "nl_lo": ("virtual_experiments", "table5.nonlinear.max_range_pct", "min"),
+            "nl_hi": ("virtual_experiments", "table5.nonlinear.max_range_pct", "max"),
+            "pub": ("virtual_experiments", "table5.published_maxabs_over_range_pct", "max"),
+            "runs": ("virtual_experiments", "table5.nonlinear.converged_runs", None),
+            "t_thin": ("nonlinear_family", "family.thinnest_mm", None),
+            "t_thick": ("nonlinear_family", "family.thickest_mm", None),
+            "fam_lo": ("nonlinear_family", "family.worst_departure_pct", "min"),
+            "fam_hi": ("nonlinear_family", "family.worst_departure_pct", "max"),
+            "fam_runs": ("nonlinear_family", "parameters.family_runs", None),
+            "mesh": ("nonlinear_family", "mesh.departure_change_pct", "max"),
+        },
+        ("virtual_experiments", "Table 5", "(ours) the published errors imply"),
+        (cat.CAT_OURS, cat.CAT_SUPPORTED),
+        ("virtual_experiments", "Table 5"),
+        holds=True,
+    ),
+    Finding(
+        "Divide and conquer does not give the better calibration in the thesis's setup.",
+        "With the thesis's pose counts the 5R calibrated leg by leg reaches a workspace RMS error "
+        "of {dc:.1f} µm against {trad:.1f} µm for the traditional method, better in only "
+        "{share:.0%} of the paired trials. With Table 8's measurement budget it is better in "
+        "{share_m:.0%} of the trials in workspace error (p = {p_m:.2g}) and in {pshare_m:.0%} in "
+        "parameter error (p = {pp_m:.1e}).",
+        {
+            "dc": ("fivebar_identification", "mc.rms_mean_um", 0),
+            "trad": ("fivebar_identification", "mc.rms_mean_um", 1),
+            "share": ("fivebar_identification", "mc.share_dc_better", None),
+            "share_m": ("fivebar_identification", "mc_matched.share_dc_better", None),
+            "p_m": ("fivebar_identification", "mc_matched.p_value", None),
+            "pshare_m": ("fivebar_identification", "mc_matched.param_share_dc_better", None),
+            "pp_m": ("fivebar_identification", "mc_matched.param_p_value", None),
+        },
+        ("fivebar_identification", "Figs 13–14", "D&C gives a better calibration"),
+        (cat.CAT_NOT_SUPPORTED, cat.CAT_MIXED),
+        ("fivebar_identification", "Fig 14"),
+        otherwise=(
+            "Divide and conquer beats the traditional identification.",
+            "In the thesis's own setup the 5R calibrated leg by leg reaches a workspace RMS "
+            "error of {dc:.1f} µm against {trad:.1f} µm for the traditional method, better in "
+            "{share:.0%} of the paired trials.",
+        ),
+    ),
+)
