@@ -57,7 +57,8 @@ def test_method_pages_are_written_deterministically(tmp_path: Path) -> None:
     methods.write_pages(tmp_path, link)
     assert (tmp_path / "method_doe.svg").read_bytes() == svg
     text = pages[1].read_text()
-    assert "```{image} protocol_5r.svg" in text and "**Fig 9 (thesis).**" in text
+    assert "```{figure} protocol_5r.svg" in text and "Thesis Fig 9, redrawn." in text
+    assert ":alt: Flow diagram of " in text and "1. " in methods.alt_text(methods.FIG9)
     assert "[Fig 12](fivebar_identification)" in text and "back to step 1" in text
 
 

@@ -153,6 +153,12 @@ def draw(method: MethodFigure) -> plt.Figure:
     return flow_diagram([Step(s.title, _note(s)) for s in method.steps], method.loop)
 
 
+def alt_text(method: MethodFigure) -> str:
+    """The figure's alt text: a flow diagram and its steps in order, in words."""
+    steps = "; ".join(f"{i}. {step.title}" for i, step in enumerate(method.steps, 1))
+    return f"Flow diagram of {len(method.steps)} steps: {steps}".replace("\n", " ")
+
+
 def page_markdown(method: MethodFigure, image: str, link: Callable[[str, str], str]) -> str:
     """The MyST page showing ``image`` with its caption and the step-by-step table of links.
 
@@ -167,14 +173,14 @@ def page_markdown(method: MethodFigure, image: str, link: Callable[[str, str], s
     lines = [
         f"# {method.heading}",
         "",
-        f"```{{image}} {image}",
-        f":alt: {method.figure} of the thesis redrawn as a flow diagram",
+        # a numbered figure ("Figure N", the book's numbering); the caption names the thesis's
+        f"```{{figure}} {image}",
+        f":alt: {alt_text(method)}",
         ":align: center",
-        "```",
+        f":name: {method.page}-figure",
         "",
-        # a caption paragraph, not a numbered {figure}: Sphinx would number it "Fig. 1" on
-        # every page, next to the thesis's own number
-        f"**{method.figure} (thesis).** {method.caption}",
+        f"Thesis {method.figure}, redrawn. {method.caption}",
+        "```",
         "",
         "```{list-table}",
         ":header-rows: 1",
