@@ -38,12 +38,14 @@ timings on 2 shared, busy cores (``make bench`` re-measures the ratio in one run
   0.10 0.80). Without the derivatives, 24 and 36 energy POD vectors: 8.7 13.1 1.3 0.5 0.4 4.4 and
   2.0 3.3 0.52 0.11 0.19 0.87; 12 third-order vectors instead of snapshots (``n_third``, no
   full run): 4.1 13.1 2.2 1.2 1.7 4.5.
-- online: 1.5–2.8 ms a pose one at a time (27–51 vectors; four or five products with the packed
-  quartic tensor, memory-bound), 0.3–0.9 ms a pose in batches of 1000. ``make bench`` (51
-  vectors, 431 elements): 2.3 ms a pose one at a time, 3.1·10³ times faster than a full run
-  (7.0 s), 0.67 ms in a batch, 1.0·10⁴ times; pose error 0.42 % of a component's range on 6
-  runs (linear model 16 %). A float32 copy of the quartic tensor for the first iterations did
-  not measure faster.
+- online: 1.5–2.8 ms a pose one at a time (27–51 vectors; 4.9 products with the packed quartic
+  tensor from the second-order start, memory-bound), 0.3–0.9 ms a pose in batches of 1000.
+  With the cubic predictor, ``make bench`` (51 vectors, 431 elements, build 64 s after the 42
+  full runs): 2.0 ms a pose one at a time, 3.5·10³ times faster than a full run (6.9 s), 0.43 ms
+  a pose in a batch, 1.6·10⁴ times; pose error 0.42 % of a component's range on 6 runs (linear
+  model 16 %). A float32 copy of the quartic tensor for the first iterations did not measure
+  faster; compressing the derivatives and snapshots into one energy POD of 15–21 vectors (small
+  model) made the errors 10–40 %.
 - rejected: ECSW at 1e-3–1e-4 (small model: worse than the linear model at 10 N; probably
   because in the stiff derivative coordinates the non-linear force nearly cancels the linear
   one, which amplifies its relative error); evaluating the sampled elements' forces and tangents
