@@ -167,7 +167,7 @@ clean:
 # installs both). Run after `make book` (it reuses the generated pages; notebooks are not re-run).
 PDF_HTML      := book/_build/singlehtml
 PDF           := book/_build/pdf/book.pdf
-# the whole book printed to 66 pages (measured); fewer than this means a truncated print
+# the whole book printed to about 90 pages (measured); fewer than this means a truncated print
 # (check-pdf also derives a floor from the amount of text)
 PDF_MIN_PAGES ?= 50
 

@@ -17,6 +17,12 @@ from mechlib.params import check_float, check_int
 
 #: significant digits of a table cell
 DIGITS = 4
+#: Reader names of the stage-pose conventions of :mod:`mechlib.hexflex.finite_pose`.
+POSE_CONVENTION_LABELS: dict[str, str] = {
+    "small": "small-rotation fit",
+    "rotvec": "rotation vector",
+    "euler_xyz": "Euler XYZ angles",
+}
 #: the two sources a side-by-side table sets against each other
 THESIS, OURS = "thesis", "ours"
 
