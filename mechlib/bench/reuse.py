@@ -96,7 +96,8 @@ def print_reuse() -> None:
     """Print :func:`tangent_reuse`'s table."""
     r = tangent_reuse()
     print(f"Reusing one factorised tangent ({int(r['n_dofs'])} DOFs), chord + Anderson "
-          f"({REUSE_ANDERSON_DEPTH}), at most {REUSE_MAX_CORRECTIONS} corrections:")  # fmt: skip
+          f"({REUSE_ANDERSON_DEPTH}), at most {REUSE_MAX_CORRECTIONS} corrections (time without "
+          "the one factorisation at the reference equilibrium):")  # fmt: skip
     print(
         "  distance [N]  reused: corrections  converged  time [s]"
         "   default: factorisations  time [s]"

@@ -5,8 +5,9 @@ load, ψ(f) = S f + Q(f) + C(f) + …, with Q quadratic, C cubic and so on. A lo
 separate the orders by parity: the part of the departure d(f) = ψ(f) − S f that is *even* in f,
 (d(f) + d(−f)) / 2 = Q(f) + (quartic …), is led by the second-order terms — the kinematics of
 finite rotation (foreshortening of bent flexures, the coupling of tilt and lift) — and the *odd*
-part, (d(f) − d(−f)) / 2 = C(f) + (quintic …), by the third-order ones — the stiffening (or
-softening) of flexures that stretch as they bend. :func:`parity_split` computes both from runs at
+part, (d(f) − d(−f)) / 2 = C(f) + (quintic …), by the third-order ones — among them the
+stiffening of flexures that stretch as they bend, beside third-order kinematic terms.
+:func:`parity_split` computes both from runs at
 ±f; :func:`parity_summary` states them, like Table 5's errors, as shares of each component's
 range. :func:`linear_poses` gives the linear counterpart of a non-linear solve on the same mesh
 and quadrature, and :func:`relative_change` compares a quantity between two discretisations.
@@ -119,9 +120,10 @@ def relative_change(values: object, reference: object) -> np.ndarray:
 
 def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
     """:func:`linear_poses` of the non-linear solve that ``spec`` defines (its mesh and
-    quadrature), without keeping a solver: at the model's own quadrature these are the (cached)
-    linear model's poses; at another one a solver is built for the call and let go (a Q2 solver
-    of the identified model holds gigabytes).
+    quadrature): at the model's own quadrature the (cached) linear model's poses; at another one
+    those of the process's solver of ``spec`` (:func:`mechlib.hexflex.experiments.solver_for`,
+    the one an in-process run used; a Q2 solver of the identified model holds gigabytes, so
+    none is built twice).
 
     Parameters
     ----------
@@ -130,11 +132,9 @@ def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
     forces : array_like (n, 6)
         Actuator forces [N] within the model's bound.
     """
-    from mechlib.hexflex.experiments import model_for
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.experiments import model_for, solver_for
     from mechlib.hexflex.problem import QUAD_ORDER
 
-    model = model_for(spec)
     if spec.quad_order == QUAD_ORDER:
-        return model.poses(forces)
-    return linear_poses(NonlinearSolver(model, quad_order=spec.quad_order), forces)
+        return model_for(spec).poses(forces)
+    return linear_poses(solver_for(spec), forces)

@@ -29,7 +29,7 @@ timings on 2 shared, busy cores (``make bench`` re-measures the ratio in one run
 - linear model: 15.3 17.9 1.8 2.8 2.2 0.6.
 - modes + derivatives (27 vectors): 12.8 16.8 1.9 1.6 2.1 7.6 with every element (tensors
   57 s), 11.7 17.4 1.6 1.6 2.1 7.9 with ECSW at 1e-5 (190 elements): the basis, not the sampling,
-  misses the response (1–4 % of a run's largest component, as the lead measured).
+  misses the response (1–4 % of a run's largest component, measured on the identified model).
 - + 12 Euclidean POD vectors (39): ECSW 1e-5 (241 el.) 2.6 2.0 0.27 0.22 0.27 0.86; ECSW 1e-6
   (382 el.) 1.7 1.4 0.23 0.15 0.17 0.31; every element (exact Galerkin) 1.1 1.5 0.24 0.11 0.13
   0.26, while the basis holds the solutions to 0.003–0.013 % (projection): Galerkin's own error.
