@@ -44,6 +44,7 @@ help:
 	@echo "make test        unit tests + every notebook + reference comparison + book build and checks"
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
 	@echo "make rerun       execute every notebook again, cold, into build/rerun (make test compares records)"
+	@echo "                 FE_CACHE_FROM=build/cache/experiments: FE results from a copy of that cache"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
@@ -113,12 +114,13 @@ test: $(STAMP)
 	$(REQUIRE_CI)
 	$(VENV)/bin/ruff check mechlib tests notebooks
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
-	@# the unit tests, the notebooks and the determinism re-run (every notebook again, cold, into
-	@# $(RERUN)) side by side: they share nothing (the unit tests write only to temporary
-	@# folders), and on two cores the unit tests fill the gaps of the notebooks' two streams
-	@# (measured: 629 s for a clean-clone make test with the unit tests run first)
-	$(MAKE) --no-print-directory -j3 unit rerun notebooks
+	@# the unit tests beside the notebooks (they write only to temporary folders; the notebooks'
+	@# FE workers and the unit tests share the two cores); then the determinism re-run: every
+	@# notebook again into $(RERUN), its FE tasks read from a copy of the first run's cache
+	@# (a seeded sample of them is recomputed cold by the last step, `determinism`)
+	$(MAKE) --no-print-directory -j2 unit notebooks
 	$(MAKE) --no-print-directory check-records
+	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments
 	$(MAKE) --no-print-directory book
 	$(MAKE) --no-print-directory check-book
 	@if $(PY) -c 'import sys; from mechlib.pipeline.book.browser import find_browser; sys.exit(not find_browser())'; \
@@ -129,11 +131,12 @@ test: $(STAMP)
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
 	$(PIPELINE) determinism --records $(BUILD)/records --rerun $(RERUN)/records
 
-# every notebook executed again, cold (an FE cache of its own), into $(RERUN): `make test`
-# requires its records to be byte-identical to the first run's
+# every notebook executed again into $(RERUN), cold (an FE cache of its own) or, with
+# FE_CACHE_FROM=<folder>, from a copy of that FE cache: `make test` requires its records to be
+# byte-identical to the first run's, and recomputes a seeded sample of the cached FE tasks cold
 rerun: $(STAMP)
 	$(REQUIRE_CI)
-	$(PIPELINE) rerun --out $(abspath $(RERUN))
+	$(PIPELINE) rerun --out $(abspath $(RERUN)) $(if $(FE_CACHE_FROM),--fe-cache-from $(FE_CACHE_FROM))
 
 # --- one notebook with new parameters ---------------------------------------------------------
 run: $(STAMP)

@@ -18,6 +18,9 @@ DEFAULT_BUILD = REPO_ROOT / "build"
 RECORDS_ENV = "MECHLIB_RECORDS"
 #: folder of cached FE results (default ``build/cache/experiments``)
 FE_CACHE_ENV = "MECHLIB_FE_CACHE"
+#: file that the FE cache's hits are logged to, one JSON line each (unset: no log); the
+#: determinism re-run sets it, to recompute a sample of what it read from the cache
+FE_LOG_ENV = "MECHLIB_FE_LOG"
 #: set to "1": a chapter's inputs are read from ``$MECHLIB_RECORDS`` only, never from the default
 #: build's records (the determinism re-run, which must not read the first run's)
 RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
@@ -31,3 +34,9 @@ def records_dir() -> Path:
 def fe_cache_dir() -> Path:
     """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
     return Path(os.environ.get(FE_CACHE_ENV, DEFAULT_BUILD / "cache" / "experiments"))
+
+
+def fe_log_path() -> Path | None:
+    """File that FE cache hits are logged to (``$MECHLIB_FE_LOG``), or ``None``."""
+    value = os.environ.get(FE_LOG_ENV)
+    return Path(value) if value else None

@@ -122,6 +122,34 @@ def test_a_rerun_into_a_relative_folder_writes_there(
     assert values["cold_cache"]["value"] is True and values["private_cache"]["value"] is True
 
 
+_CACHE_PROBE = """\
+import os
+from mechlib.paths import fe_cache_dir, fe_log_path
+from mechlib.records import Recorder
+rec = Recorder("probe")
+rec.value("copied", sorted(p.name for p in fe_cache_dir().iterdir()))
+rec.value("log_in_rerun", fe_log_path().parent == fe_cache_dir().parent)
+rec.save()
+"""
+
+
+def test_a_rerun_from_a_cache_copy_reads_a_copy_and_logs_hits(tmp_path: Path) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    (tmp_path / "nbs").mkdir()
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(_CACHE_PROBE)])
+    nbformat.write(nb, tmp_path / "nbs" / "probe.ipynb")
+    first = tmp_path / "cache"
+    first.mkdir()
+    (first / "a.npy").write_bytes(b"x")
+    rerun(tmp_path / "nbs", tmp_path / "out", fe_cache_from=first)
+    values = load(tmp_path / "out" / "records" / "probe.json")["values"]
+    assert values["copied"]["value"] == ["a.npy"] and values["log_in_rerun"]["value"] is True
+    (tmp_path / "out" / "fe-cache" / "a.npy").unlink()
+    assert (first / "a.npy").exists()  # a copy: the first run's cache is untouched
+    with pytest.raises(RuntimeError, match="fe_cache_from"):
+        rerun(tmp_path / "nbs", tmp_path / "out2", fe_cache_from=tmp_path / "missing")
+
+
 def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: Path) -> None:
     nbformat = pytest.importorskip("nbformat")
     notebooks = tmp_path / "notebooks"

@@ -37,6 +37,7 @@ from mechlib.hexflex.nonlinear import NonlinearSolver
 from mechlib.hexflex.problem import QUAD_ORDER
 from mechlib.hexflex.sources import model_modules
 from mechlib.params import check_choice, check_int
+from mechlib.paths import fe_log_path
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.finite_pose`): the
@@ -161,6 +162,12 @@ def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndar
     return np.array(rows)
 
 
+def task_poses(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+    """What one task of :func:`run_experiments` computes and caches, computed now: the poses
+    (rows of ``forces``, 6 or 18 columns) — for checking a cached result against a fresh one."""
+    return _task(spec, kind, np.asarray(forces, dtype=float), steps)
+
+
 @lru_cache(maxsize=1)
 def model_code_fingerprint() -> str:
     """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
@@ -213,6 +220,16 @@ def _cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None
     except (OSError, ValueError, EOFError):
         return None
     return res if res.shape == (n_rows, width) and np.all(np.isfinite(res)) else None
+
+
+def _log_hit(path: Path, spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> None:
+    """Append a cache hit to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file and the
+    task's inputs), so that :mod:`mechlib.hexflex.cachecheck` can recompute a sample cold."""
+    log = fe_log_path()
+    if log is not None:
+        entry = {"file": path.name, "spec": spec.key(), "kind": kind, "steps": steps}
+        with open(log, "a") as fh:
+            fh.write(json.dumps({**entry, "forces": forces.tolist()}) + "\n")
 
 
 def check_forces_design(design: object) -> np.ndarray:
@@ -292,6 +309,7 @@ def run_experiments(
         cached = _cached_result(path, len(rows), width) if path is not None else None
         if cached is not None:
             out[rows], done[rows] = cached, True
+            _log_hit(path, spec, kind, d[rows], steps)
             continue
         fut = pool.submit(_task, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it

@@ -23,9 +23,12 @@ from mechlib.pipeline import bookbuild, runs
 from mechlib.pipeline.book import browser
 from mechlib.pipeline.execute import execute
 from mechlib.pipeline.references import update_references
-from mechlib.pipeline.rerun import rerun, rerun_differences, rerun_identical
+from mechlib.pipeline.rerun import HIT_LOG, rerun, rerun_differences, rerun_identical
 
 NOTEBOOKS = REPO_ROOT / "notebooks"
+#: non-linear FE tasks that the determinism check recomputes cold when the re-run read the first
+#: run's FE cache (each about a non-linear run, ≈ 5–15 s, plus one model build per model)
+COLD_SAMPLE = 6
 
 
 def _execute(args: argparse.Namespace) -> int:
@@ -40,7 +43,7 @@ def _update(args: argparse.Namespace) -> int:
 
 def _rerun(args: argparse.Namespace) -> int:
     try:
-        rerun(args.notebooks, args.out)
+        rerun(args.notebooks, args.out, fe_cache_from=args.fe_cache_from)
     except RuntimeError as err:
         print(err, file=sys.stderr)
         return 1
@@ -56,7 +59,29 @@ def _determinism(args: argparse.Namespace) -> int:
     for p in problems:
         print("NOT DETERMINISTIC:", p)
     print("determinism: " + ("FAILED" if problems else "records identical on a second run"))
-    return 1 if problems else 0
+    cold_failed = False
+    if args.rerun is not None and (args.rerun.parent / HIT_LOG).exists():
+        cold_failed = _cold_sample(args.rerun.parent, args.cold)
+    return 1 if problems or cold_failed else 0
+
+
+def _cold_sample(rerun_dir: Path, n_nonlinear: int) -> bool:
+    """Recompute a seeded sample of the FE tasks the re-run read from its cache; True if one
+    differs from its cached result."""
+    from mechlib.hexflex.cachecheck import check_sample, read_log
+
+    per_kind = {"nonlinear": n_nonlinear, "linear": 1}
+    checks = check_sample(rerun_dir / HIT_LOG, rerun_dir / "fe-cache", per_kind)
+    for c in checks:
+        verdict = "identical" if c.identical else f"DIFFERS by up to {c.max_abs_diff:.3g}"
+        print(f"  cached {c.kind} task {c.file} ({c.rows} run(s)) recomputed cold: {verdict}")
+    bad = [c for c in checks if not c.identical]
+    n_read = len(read_log(rerun_dir / HIT_LOG))
+    print(
+        f"determinism: {len(checks) - len(bad)} of {len(checks)} sampled FE tasks (of the "
+        f"{n_read} the re-run read from the cache) recomputed cold, bit-identical"
+    )
+    return bool(bad)
 
 
 #: commands whose own modules parse their arguments
@@ -87,10 +112,21 @@ def parser() -> argparse.ArgumentParser:
     det.add_argument(
         "--rerun", type=Path, help="records of a re-run already made (`rerun`): compare only"
     )
+    det.add_argument(
+        "--cold",
+        type=int,
+        default=COLD_SAMPLE,
+        help="non-linear FE tasks of a re-run from a copied cache recomputed cold (seeded sample)",
+    )
     det.set_defaults(func=_determinism)
     again = sub.add_parser("rerun", help="execute every notebook again, cold, into a folder")
     again.add_argument("--out", type=Path, required=True)
     again.add_argument("--notebooks", type=Path, default=NOTEBOOKS)
+    again.add_argument(
+        "--fe-cache-from",
+        type=Path,
+        help="start from a copy of this FE cache (FE tasks read, logged, not solved)",
+    )
     again.set_defaults(func=_rerun)
     for name, (_, what) in DELEGATED.items():
         sub.add_parser(name, help=what, add_help=False)

@@ -11,20 +11,29 @@ import sys
 import tempfile
 from pathlib import Path
 
-from mechlib.paths import FE_CACHE_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
+from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
 from mechlib.pipeline.chapters import in_order
 from mechlib.pipeline.execute import input_arguments, papermill_command
 from mechlib.pipeline.references import compare
 from mechlib.records import load
 
+#: file of the re-run's folder that logs its FE cache hits (``$MECHLIB_FE_LOG``)
+HIT_LOG = "fe-cache-hits.jsonl"
 
-def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
-    """Execute every notebook again, cold, into ``out`` (emptied first).
+
+def rerun(
+    notebooks: Path, out: Path, python: str = sys.executable, fe_cache_from: Path | None = None
+) -> None:
+    """Execute every notebook again into ``out`` (emptied first).
 
     The executed notebooks go to ``out/<name>.ipynb``, their records to ``out/records``
-    (``$MECHLIB_RECORDS``), and their FE results to an empty cache of their own,
-    ``out/fe-cache`` (``$MECHLIB_FE_CACHE``): the re-run computes everything again and shares
-    nothing with a first run, so the two can run at the same time (``make test`` does). Notebooks
+    (``$MECHLIB_RECORDS``), and their FE results to a cache of their own, ``out/fe-cache``
+    (``$MECHLIB_FE_CACHE``). That cache starts empty — the re-run computes everything again and
+    shares nothing with a first run, so the two can run at the same time — or, with
+    ``fe_cache_from``, as a copy of the first run's FE cache: then every FE task it finds there
+    is read, not solved, and logged to ``out/fe-cache-hits.jsonl`` (``$MECHLIB_FE_LOG``), so that
+    a sample of them can be recomputed cold (:func:`mechlib.hexflex.cachecheck.check_sample`;
+    ``make test`` does both, and saves the second run's FE solves). Notebooks
     run in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each after the chapters
     whose records give it inputs, read strictly from the re-run's own records
     (``$MECHLIB_RECORDS_STRICT``), never the first run's.
@@ -38,14 +47,17 @@ def rerun(notebooks: Path, out: Path, python: str = sys.executable) -> None:
     out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
     shutil.rmtree(out, ignore_errors=True)
     (out / "records").mkdir(parents=True)
-    env = dict(
-        os.environ,
-        **{
-            RECORDS_ENV: str(out / "records"),
-            FE_CACHE_ENV: str(out / "fe-cache"),
-            RECORDS_STRICT_ENV: "1",
-        },
-    )
+    variables = {
+        RECORDS_ENV: str(out / "records"),
+        FE_CACHE_ENV: str(out / "fe-cache"),
+        RECORDS_STRICT_ENV: "1",
+    }
+    if fe_cache_from is not None:
+        if not Path(fe_cache_from).is_dir():
+            raise RuntimeError(f"fe_cache_from must be an FE cache folder, got {fe_cache_from}")
+        shutil.copytree(fe_cache_from, out / "fe-cache")
+        variables[FE_LOG_ENV] = str(out / HIT_LOG)
+    env = dict(os.environ, **variables)
     for nb in in_order(Path(notebooks).glob("*.ipynb")):
         print(f"re-run: executing {nb.name}", flush=True)
         inputs = input_arguments(nb.stem, out / "records", strict=True)

@@ -1,0 +1,106 @@
+"""Cached FE results recomputed cold: evidence that what a build reads from the FE cache is what
+a fresh process computes, bit for bit.
+
+The determinism re-run (:mod:`mechlib.pipeline.rerun`) starts from the first run's FE cache and
+logs every hit (``$MECHLIB_FE_LOG``, written by
+:func:`mechlib.hexflex.experiments.run_experiments`);
+:func:`check_sample` then recomputes a seeded sample of the logged tasks in this process and
+compares each with its cached file. Together the two cover what a fully cold re-run would: the
+records check every seeded stream and every computation downstream of the FE solves, the sample
+checks the solves themselves.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mechlib.hexflex.experiments import KINDS, ModelSpec, release_models, task_poses
+from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.params import check_int
+
+#: seed of the sample of logged tasks that :func:`check_sample` recomputes
+SAMPLE_SEED = 2010
+
+
+@dataclass(frozen=True)
+class CacheCheck:
+    """One cached task recomputed: its cache file, kind, rows, and whether the fresh result is
+    bit-identical (``max_abs_diff`` [µm, µrad]: the largest difference, 0 when identical)."""
+
+    file: str
+    kind: str
+    rows: int
+    identical: bool
+    max_abs_diff: float
+
+
+def read_log(path: Path) -> list[dict]:
+    """The distinct tasks of a hit log (one JSON object per line), in order of first hit.
+
+    Returns
+    -------
+    list of dict
+        Keys ``file`` (cache file name), ``spec`` (:meth:`ModelSpec.key` text), ``kind``,
+        ``steps`` and ``forces`` (rows of 6 forces [N]).
+    """
+    seen: dict[str, dict] = {}
+    for line in Path(path).read_text().splitlines():
+        if line.strip():
+            entry = json.loads(line)
+            seen.setdefault(entry["file"], entry)
+    return list(seen.values())
+
+
+def spec_from_key(text: str) -> ModelSpec:
+    """The :class:`ModelSpec` whose :meth:`ModelSpec.key` is ``text``."""
+    fields = json.loads(text)
+    geometry = HexFlexGeometry(**fields.pop("geometry"))
+    return ModelSpec(geometry=geometry, **fields)
+
+
+def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEED) -> list[dict]:
+    """A seeded sample of logged tasks: ``per_kind[kind]`` of each kind (all if fewer), in log
+    order.
+
+    Returns
+    -------
+    list of dict
+        The sampled entries of :func:`read_log`.
+    """
+    rng = np.random.default_rng(seed)
+    chosen: list[int] = []
+    for kind in KINDS:
+        n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
+        idx = [i for i, e in enumerate(entries) if e["kind"] == kind]
+        if n and idx:
+            chosen.extend(rng.choice(idx, size=min(n, len(idx)), replace=False).tolist())
+    return [entries[i] for i in sorted(chosen)]
+
+
+def check_sample(
+    log: Path, cache_dir: Path, per_kind: dict[str, int], seed: int = SAMPLE_SEED
+) -> list[CacheCheck]:
+    """Recompute a seeded sample of the tasks logged in ``log`` and compare each with its file
+    in ``cache_dir``.
+
+    Returns
+    -------
+    list of CacheCheck
+        One per sampled task, grouped by model (each model is released before the next).
+    """
+    picked = sample(read_log(log), per_kind, seed)
+    out: list[CacheCheck] = []
+    for key in dict.fromkeys(e["spec"] for e in picked):  # one model at a time (memory)
+        spec = spec_from_key(key)
+        for e in (e for e in picked if e["spec"] == key):
+            cached = np.load(Path(cache_dir) / e["file"])
+            fresh = task_poses(spec, e["kind"], np.array(e["forces"]), e["steps"])
+            same = fresh.shape == cached.shape and np.array_equal(fresh, cached)
+            diff = float(np.max(np.abs(fresh - cached))) if fresh.shape == cached.shape else np.inf
+            out.append(CacheCheck(e["file"], e["kind"], len(e["forces"]), same, diff))
+        release_models()
+    return out

@@ -1,0 +1,55 @@
+"""Cached FE results recomputed cold (the determinism check's sample of the FE cache)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
+
+from mechlib.hexflex import cachecheck as cc
+from mechlib.hexflex import experiments as ex
+from mechlib.paths import FE_LOG_ENV
+
+SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+
+
+def _log_two_builds(tmp_path, monkeypatch, forces: np.ndarray):
+    cache, log = tmp_path / "cache", tmp_path / "hits.jsonl"
+    ex.run_experiments(SPEC, forces, kind="nonlinear", cache_dir=cache, progress=False)
+    assert not log.exists()  # no log unless asked for
+    monkeypatch.setenv(FE_LOG_ENV, str(log))
+    ex.run_experiments(SPEC, forces, kind="nonlinear", cache_dir=cache, progress=False)
+    ex.run_experiments(SPEC, forces[:1], kind="linear", cache_dir=cache, progress=False)  # miss
+    ex.run_experiments(SPEC, forces[:1], kind="linear", cache_dir=cache, progress=False)  # hit
+    return cache, log
+
+
+def test_hits_are_logged_and_a_sample_recomputes_bit_identically(tmp_path, monkeypatch) -> None:
+    forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3], [-0.2, 0.1, 0.4, -0.3, 0.2, 0.1]])
+    cache, log = _log_two_builds(tmp_path, monkeypatch, forces)
+    entries = cc.read_log(log)
+    assert [e["kind"] for e in entries] == ["nonlinear", "nonlinear", "linear"]
+    assert cc.spec_from_key(entries[0]["spec"]) == SPEC
+    checks = cc.check_sample(log, cache, {"nonlinear": 1, "linear": 5})
+    assert [c.kind for c in checks].count("nonlinear") == 1
+    assert [c.kind for c in checks].count("linear") == 1  # all there are
+    assert all(c.identical and c.max_abs_diff == 0.0 for c in checks)
+
+
+def test_a_tampered_cache_file_is_found(tmp_path, monkeypatch) -> None:
+    forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
+    cache, log = _log_two_builds(tmp_path, monkeypatch, forces)
+    (entry,) = [e for e in cc.read_log(log) if e["kind"] == "nonlinear"]
+    stored = np.load(cache / entry["file"])
+    np.save(cache / entry["file"], stored * (1 + 1e-12))
+    (check,) = cc.check_sample(log, cache, {"nonlinear": 1})
+    assert not check.identical and 0 < check.max_abs_diff < 1e-6
+
+
+def test_the_sample_is_seeded_and_refuses_bad_counts() -> None:
+    entries = [{"file": f"{i}.npy", "kind": "nonlinear"} for i in range(20)]
+    a = cc.sample(entries, {"nonlinear": 4})
+    assert a == cc.sample(entries, {"nonlinear": 4}) and len(a) == 4
+    assert a != cc.sample(entries, {"nonlinear": 4}, seed=1)
+    with pytest.raises(ValueError, match="per_kind"):
+        cc.sample(entries, {"nonlinear": -1})
