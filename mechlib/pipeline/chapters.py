@@ -21,6 +21,7 @@ CHAPTERS: tuple[str, ...] = (
     "hexflex_model",
     "virtual_experiments",
     "nonlinear_family",
+    "nonlinear_metamodels",
     "fivebar_identification",
     "beyond_5r",
 )
@@ -39,6 +40,13 @@ CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
         "seed": ("virtual_experiments", "parameters.seed"),
+    },
+    # the meta-model page holds out the first runs of the DOE chapter's validation draw
+    "nonlinear_metamodels": {
+        "geometry": ("hexflex_model", "geometry.*"),
+        "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
+        "seed": ("virtual_experiments", "parameters.seed"),
+        "n_validation": ("virtual_experiments", "parameters.n_validation"),
     },
 }
 

@@ -40,18 +40,27 @@ slower to predict; chaospy's PCE is better at 100 runs, worse at 30, and a thous
 per pose), so no dependency was added.
 """
 
-from mechlib.surrogates.curves import learning_curve, range_within_budget, space_filling_design
+from mechlib.surrogates.curves import (
+    learning_curve,
+    range_within_budget,
+    sobol_design,
+    space_filling_design,
+)
 from mechlib.surrogates.families import (
     FAMILIES,
+    LABELS,
+    PHYSICS,
     Surrogate,
     fit_surrogate,
     n_terms,
     predict,
+    wrap_model,
 )
 from mechlib.surrogates.inverse import compare_with_truth, invert, jacobian, round_trip_error
 from mechlib.surrogates.scoring import (
     compare_families,
     cross_validate,
+    cv_folds,
     latency_us,
     score,
     summary_table,
@@ -59,10 +68,13 @@ from mechlib.surrogates.scoring import (
 
 __all__ = [
     "FAMILIES",
+    "LABELS",
+    "PHYSICS",
     "Surrogate",
     "compare_families",
     "compare_with_truth",
     "cross_validate",
+    "cv_folds",
     "fit_surrogate",
     "invert",
     "jacobian",
@@ -73,6 +85,8 @@ __all__ = [
     "range_within_budget",
     "round_trip_error",
     "score",
+    "sobol_design",
     "space_filling_design",
     "summary_table",
+    "wrap_model",
 ]

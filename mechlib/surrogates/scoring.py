@@ -16,6 +16,7 @@ from mechlib.surrogates.families import (
     Surrogate,
     check_forces,
     fit_surrogate,
+    n_terms,
     predict,
     predict_array,
 )
@@ -109,6 +110,30 @@ def cross_validate(
     out["worst_pct"] = float(out["max_range_pct"].max())
     out["predicted"] = predicted
     return out
+
+
+def cv_folds(family: str, n_runs: int, n_inputs: int = 6, folds: int = CV_FOLDS) -> int:
+    """Folds of :func:`cross_validate` for a family on ``n_runs`` runs: ``folds`` if every
+    fold's training runs (n − ⌈n / folds⌉) are at least the family's :func:`n_terms`, else
+    leave-one-out (``n_runs`` folds).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        If even leave-one-out leaves fewer runs than the family's number of terms.
+    """
+    n_runs = check_int("n_runs", n_runs, low=2)
+    need = n_terms(family, n_inputs)
+    if n_runs - 1 < need:
+        raise ValueError(
+            f"n_runs must exceed the {family} family's {need} terms for a cross-validation, "
+            f"got {n_runs}"
+        )
+    return folds if n_runs - -(-n_runs // folds) >= need else n_runs
 
 
 def latency_us(

@@ -71,6 +71,30 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "six actuator forces.",
         ),
     },
+    "nonlinear_metamodels": {
+        "mm-12": (
+            "Learning curves on the non-linear HexFlex: the largest error over the held-out "
+            "non-linear runs at ±1 N (worst pose component, % of its range) against the number "
+            "of full non-linear FE runs each model was trained on; lines: fitted families on "
+            "nested Sobol' designs; points: the thesis's fits on Table 4's runs and the "
+            "reduced-order model; dashed: the error budget.",
+            "Log-log plot of error in percent against training runs, one descending line per "
+            "meta-model family, three single markers, and a horizontal dashed budget line.",
+        ),
+        "mm-15": (
+            "Largest error (worst pose component, % of its range) of each model at each force "
+            "range, every fitted family trained at that range; dashed: the error budget.",
+            "Log-log plot of error in percent against the force range in newtons, one line per "
+            "model, with a horizontal dashed budget line.",
+        ),
+        "mm-20": (
+            "Accuracy against speed: each model's largest error at ±1 N (% of range) against "
+            "the time to predict one pose on the machine that built the page; dashed: the "
+            "error budget; dotted: the real-time deadline.",
+            "Scatter plot on logarithmic axes, one marker per model, with a horizontal dashed "
+            "budget line and a vertical dotted deadline line.",
+        ),
+    },
     "virtual_experiments": {
         "cell-09": (
             "Thesis Fig 6 on our model: half-normal plots of the main effects of Table 2's runs "

@@ -1,0 +1,94 @@
+"""Figures of the meta-model comparison on the non-linear HexFlex: error against training
+runs, against the force range, and accuracy against latency."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from mechlib.plotting.style import figure_and_axes
+
+MARKERS = "osD^v<>ph*"
+
+
+def _budget(ax, budget_pct: float, horizontal: bool = True) -> None:
+    if horizontal:
+        ax.axhline(budget_pct, color="k", lw=0.8, ls="--", label=f"{budget_pct:g} % budget")
+    else:
+        ax.axvline(budget_pct, color="k", lw=0.8, ls="--", label=f"{budget_pct:g} % budget")
+
+
+def learning_curves(
+    sizes: Sequence[int],
+    worst_pct: np.ndarray,
+    names: Sequence[str],
+    points: Mapping[str, tuple[float, float]],
+    budget_pct: float,
+    ax=None,
+) -> Figure:
+    """Largest validation error (% of a component's range, worst component) against the number
+    of full FE training runs: one line per family (``worst_pct`` (families, sizes); NaN where a
+    family cannot be fitted) and single points (``points``: name → (runs, error))."""
+    fig, ax = figure_and_axes(ax, (6.4, 4.0))
+    w = np.asarray(worst_pct, dtype=float)
+    for k, name in enumerate(names):
+        ok = np.isfinite(w[k])
+        if ok.any():
+            ax.plot(np.asarray(sizes)[ok], w[k][ok], marker=MARKERS[k % len(MARKERS)], label=name)
+    for j, (name, (n, e)) in enumerate(points.items()):
+        ax.plot([n], [e], ls="none", marker=MARKERS[-1 - j], ms=9, label=name)
+    _budget(ax, budget_pct)
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("full non-linear FE runs used for training")
+    ax.set_ylabel("largest error [% of range]")
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def error_vs_range(
+    amplitudes: Sequence[float],
+    worst_pct: np.ndarray,
+    names: Sequence[str],
+    budget_pct: float,
+    ax=None,
+) -> Figure:
+    """Largest validation error (% of range) of each model (rows of ``worst_pct``) at each
+    force range ±amplitude [N] (columns)."""
+    fig, ax = figure_and_axes(ax, (6.4, 4.0))
+    w = np.asarray(worst_pct, dtype=float)
+    for k, name in enumerate(names):
+        ax.plot(amplitudes, w[k], marker=MARKERS[k % len(MARKERS)], label=name)
+    _budget(ax, budget_pct)
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xticks(list(amplitudes), [f"±{a:g}" for a in amplitudes])
+    ax.set_xlabel("force range [N]")
+    ax.set_ylabel("largest error [% of range]")
+    ax.legend(fontsize=7, ncol=2)
+    return fig
+
+
+def latency_accuracy(
+    latency_us: Sequence[float],
+    worst_pct: Sequence[float],
+    names: Sequence[str],
+    budget_pct: float,
+    deadline_us: float,
+    ax=None,
+) -> Figure:
+    """Largest validation error (% of range) against the time to predict one pose [µs], with
+    the error budget and a control-loop deadline."""
+    fig, ax = figure_and_axes(ax, (6.4, 4.0))
+    for k, (t, e, name) in enumerate(zip(latency_us, worst_pct, names, strict=True)):
+        ax.plot([t], [e], ls="none", marker=MARKERS[k % len(MARKERS)], ms=8, label=name)
+    _budget(ax, budget_pct)
+    ax.axvline(deadline_us, color="grey", lw=0.8, ls=":", label=f"{deadline_us:g} µs a pose")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("time to predict one pose [µs]")
+    ax.set_ylabel("largest error [% of range]")
+    ax.legend(fontsize=7, ncol=2)
+    return fig

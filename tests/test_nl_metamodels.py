@@ -1,0 +1,83 @@
+"""Pieces of the meta-model page on the non-linear HexFlex: Sobol' designs, a physics-based
+model as a surrogate, cross-validation folds, snapshot fields, the page's figures."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
+
+from mechlib import surrogates
+from mechlib.hexflex import experiments as ex
+from mechlib.hexflex import snapshots
+from mechlib.plotting import metamodels as mmplot
+
+
+def test_sobol_designs_are_nested_balanced_and_seeded() -> None:
+    d = surrogates.sobol_design(64, 0.5, seed=3)
+    f = d["forces"]
+    assert f.shape == (64, 6) and np.abs(f).max() <= 0.5
+    for n in (16, 32, 64):  # every power-of-two prefix: one point per 1/n slice of each axis
+        u = (f[:n] / 0.5 + 1) / 2
+        assert all(len(np.unique(np.floor(u[:, j] * n))) == n for j in range(6))
+    assert np.array_equal(f, surrogates.sobol_design(64, 0.5, seed=3)["forces"])
+    assert not np.array_equal(f, surrogates.sobol_design(64, 0.5, seed=4)["forces"])
+    with pytest.raises(ValueError, match=r"n_runs must be a power of two.*got 48"):
+        surrogates.sobol_design(48, 1.0, seed=0)
+    with pytest.raises(ValueError, match="amplitude"):
+        surrogates.sobol_design(16, 0.0, seed=0)
+
+
+def _cubic_truth(x: np.ndarray) -> np.ndarray:
+    return x @ np.diag([2.0, 1.0, 3.0, 1.5, 0.5, 1.0]) + 0.1 * x**3
+
+
+def test_a_physics_model_is_scored_timed_and_inverted_like_a_fitted_one() -> None:
+    model = surrogates.wrap_model("cubic", _cubic_truth, amplitude=1.0)
+    x = np.random.default_rng(0).uniform(-0.8, 0.8, (20, 6))
+    s = surrogates.score(model, x, _cubic_truth(x))
+    assert s["worst_pct"] == 0.0
+    lin = surrogates.fit_surrogate("linear", x, _cubic_truth(x), amplitude=1.0)
+    assert surrogates.score(lin, x, _cubic_truth(x))["worst_pct"] > 0.1
+    target = _cubic_truth(x[:3])
+    forces = surrogates.invert(model, target)["forces"]
+    assert np.allclose(forces, x[:3], atol=1e-8)
+    assert surrogates.latency_us(model, x, repeats=2)["single"] > 0
+    with pytest.raises(ValueError, match="validated range"):
+        surrogates.score(model, 1.5 * np.ones((1, 6)), np.zeros((1, 6)))
+    with pytest.raises(ValueError, match="poses must be callable"):
+        surrogates.wrap_model("x", 3.0, amplitude=1.0)
+
+
+def test_cv_folds_fall_back_to_leave_one_out_and_refuse_too_few_runs() -> None:
+    assert surrogates.cv_folds("linear", 30) == 5
+    assert surrogates.cv_folds("quadratic", 30) == 30  # 5 folds would leave 24 < 28 terms
+    assert surrogates.cv_folds("quadratic", 64) == 5
+    with pytest.raises(ValueError, match="n_runs must exceed the quadratic family's 28 terms"):
+        surrogates.cv_folds("quadratic", 28)
+
+
+def test_snapshot_fields_are_the_solver_s_and_cached(tmp_path) -> None:
+    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
+    fields = snapshots.nonlinear_states(spec, forces, cache_dir=tmp_path)
+    solver = ex.solver_for(spec)
+    assert np.array_equal(fields[0], solver.solve(forces[0])[0])
+    (cached,) = list(tmp_path.glob("*.state.npy"))
+    np.save(cached, fields[0] + 1.0)  # a cached field is read, not solved again
+    assert np.array_equal(snapshots.nonlinear_states(spec, forces, cache_dir=tmp_path), fields + 1)
+    poses = ex.run_experiments(spec, forces, kind="nonlinear", progress=False)
+    assert np.array_equal(solver.model.pose_of(fields[0]), poses[0])
+
+
+def test_the_page_figures_draw() -> None:
+    w = np.array([[5.0, 2.0, 1.0], [np.nan, 3.0, 0.5]])
+    fig = mmplot.learning_curves([16, 32, 64], w, ["a", "b"], {"rom": (42, 0.3)}, 1.0)
+    assert isinstance(fig, Figure) and len(fig.axes[0].lines) == 4  # 2 curves, 1 point, budget
+    assert isinstance(mmplot.error_vs_range([0.25, 0.5, 1.0], w, ["a", "b"], 1.0), Figure)
+    assert isinstance(mmplot.latency_accuracy([1.0, 2e3], [5.0, 0.3], ["a", "b"], 1.0, 1e3), Figure)
