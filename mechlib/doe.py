@@ -1,4 +1,5 @@
-"""Designs of experiments: Plackett–Burman, uniform-design quality (CD²), random balanced designs.
+"""Designs of experiments: Plackett–Burman, uniform-design quality (CD²), random balanced designs,
+the random validation design.
 
 Designs are ``(runs, factors)`` arrays in coded units, every level in ``[-1, 1]``
 (Table 1 of the thesis: ±1 N maps to ±1).
@@ -25,6 +26,9 @@ LEVEL_TOL = 1e-9
 
 MAX_LEVELS = 1000
 """Most levels a factor may have in :func:`uniform_design_points`."""
+
+MAX_RANDOM_RUNS = 100_000
+"""Most runs of a :func:`random_design` (the DOE chapter's bound on its validation runs)."""
 
 
 def check_design(
@@ -271,3 +275,36 @@ def level_counts(design: object) -> dict[float, np.ndarray]:
     arr = check_design(design)
     levels = np.unique(np.round(arr, LEVEL_DECIMALS))
     return {float(v): np.sum(np.isclose(arr, v), axis=0) for v in levels}
+
+
+def random_design(n_runs: int, n_factors: int, seed: int) -> np.ndarray:
+    """The random validation design: every level drawn uniformly in
+    ``[-LEVEL_LIMIT, LEVEL_LIMIT]`` (Table 5's random runs, at ±1 N).
+
+    The draw fills the design run by run, so the first k runs of a design are the design of k
+    runs with the same seed: a chapter that solves "the first k runs of the draw" needs only the
+    seed.
+
+    Parameters
+    ----------
+    n_runs : int
+        Runs, 1 to :data:`MAX_RANDOM_RUNS`.
+    n_factors : int
+        Factors (columns), ≥ 1.
+    seed : int
+        Seed of ``numpy.random.default_rng``, ≥ 0.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_runs, n_factors)
+        Coded levels (= forces in N for the HexFlex's actuators).
+
+    Raises
+    ------
+    ValueError, TypeError
+        If an argument is not an integer in its range (named, with the range).
+    """
+    n_runs = check_int("n_runs", n_runs, low=1, high=MAX_RANDOM_RUNS)
+    n_factors = check_int("n_factors", n_factors, low=1)
+    rng = np.random.default_rng(check_int("seed", seed, low=0))
+    return rng.uniform(-LEVEL_LIMIT, LEVEL_LIMIT, (n_runs, n_factors))

@@ -1,6 +1,7 @@
 """The reuse benchmark's design statistic: nearest-neighbour distances of seeded uniform designs."""
 
 import numpy as np
+import pytest
 
 from mechlib.bench.reuse import nearest_neighbour_distances
 
@@ -18,3 +19,9 @@ def test_nearest_neighbour_distances_shrink_with_design_size():
     small, large = (np.median(nearest_neighbour_distances(n)) for n in (200, 10_000))
     assert large < small
     assert large > small * (200 / 10_000) ** (1 / 6) * 0.8
+
+
+def test_a_design_of_one_run_is_refused_by_name():
+    # one run has no other run to be near: inf, not a distance
+    with pytest.raises(ValueError, match="n_runs must be >= 2, got 1"):
+        nearest_neighbour_distances(1)

@@ -168,3 +168,17 @@ def test_balance_means_every_level_equally_often_in_every_column() -> None:
     assert not doe.is_balanced(repeated)
     missing = np.array([[-1.0, -1.0], [0.0, 1.0], [1.0, -1.0], [-1.0, 1.0]])
     assert not doe.is_balanced(missing)  # column 1 never takes the level 0
+
+
+def test_random_design_is_the_chapters_draw_and_its_prefix_is_the_smaller_design() -> None:
+    # the DOE chapter's validation draw and the family page's runs are this one stream: NumPy's
+    # PCG64 uniform in [-1, 1] N, run by run (a change here changes every cached validation run)
+    d = doe.random_design(1000, 6, 2010)
+    np.testing.assert_array_equal(d, np.random.default_rng(2010).uniform(-1.0, 1.0, (1000, 6)))
+    assert d.shape == (1000, 6) and np.abs(d).max() <= doe.LEVEL_LIMIT
+    np.testing.assert_array_equal(doe.random_design(4, 6, 2010), d[:4])
+    assert not np.array_equal(doe.random_design(4, 6, 2011), d[:4])
+    with pytest.raises(ValueError, match=r"n_runs must be in \[1, 100000\], got 0"):
+        doe.random_design(0, 6, 2010)
+    with pytest.raises(ValueError, match="seed must be >= 0, got -1"):
+        doe.random_design(10, 6, -1)

@@ -331,3 +331,22 @@ def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
     assert len(list(tmp_path.glob("*.npy"))) == 1  # one solve, one cache entry
     with pytest.raises(ValueError, match="pose must be one of"):
         ex.run_experiments(spec, d, kind="linear", pose="rotvec", progress=False)
+
+
+def test_a_quadrature_order_out_of_range_is_refused_by_name() -> None:
+    with pytest.raises(ValueError, match=r"quad_order must be in \[2, 10\], got 11"):
+        ex.ModelSpec(SMALL, quad_order=11)
+    with pytest.raises(TypeError, match="quad_order must be an integer"):
+        ex.ModelSpec(SMALL, quad_order=4.0)
+    assert ex.ModelSpec(SMALL, quad_order=10).quad_order == 10
+
+
+def test_release_models_empties_the_model_and_solver_caches() -> None:
+    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    ex.model_for(spec)
+    ex.solver_for(spec)
+    assert ex._model.cache_info().currsize >= 1
+    assert ex.solver_for.cache_info().currsize >= 1
+    ex.release_models()
+    assert ex._model.cache_info().currsize == 0
+    assert ex.solver_for.cache_info().currsize == 0

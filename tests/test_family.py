@@ -37,3 +37,43 @@ def test_a_thickness_out_of_bounds_is_refused_before_any_model():
     with pytest.raises(ValueError, match="thickness"):
         family.frame_reach(target, _identified(), [0.1])
     assert np.isfinite(family.check_thickness(0.45))
+
+
+def _fake_identify(miss: float):
+    """An :func:`ident.identify` stand-in (no FE model): it returns its start with every
+    magnitude ``miss`` (relative) off the target, and keeps the settings it was given."""
+    seen = {}
+
+    def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol):
+        seen.update(max_evaluations=max_evaluations, tol=tol, thickness=start.thickness)
+        t = np.asarray(target, dtype=float)
+        hist = np.zeros((max_evaluations, len(free) + 4))
+        return ident.Identification(start, t * (1 + miss), t, max_evaluations, hist)
+
+    return fake, seen
+
+
+def test_a_member_that_misses_eq8_beyond_tol_is_refused(monkeypatch):
+    target = ident.target_values(pub.EQ8_ST)
+    g = _identified()
+    fake, seen = _fake_identify(miss=2e-3)  # |log(1.002)| ≈ 2.0e-3 > tol
+    monkeypatch.setattr(ident, "identify", fake)
+    with pytest.raises(ValueError, match=r"thickness 0\.45 mm.*= 0\.002\b.*tol = 0\.001"):
+        family.identify_member(target, g, 0.45, 0.5, max_evaluations=3, tol=1e-3)
+    assert seen == {"max_evaluations": 3, "tol": 1e-3, "thickness": 0.45}
+    # within tol the member is kept, with its worst relative error in percent
+    fake, _ = _fake_identify(miss=-5e-4)
+    monkeypatch.setattr(ident, "identify", fake)
+    member = family.identify_member(target, g, 0.45, 0.5, max_evaluations=3, tol=1e-3)
+    assert member.worst_pct == pytest.approx(0.05)
+    assert member.geometry.thickness == 0.45 and member.evaluations == 3
+
+
+def test_member_thicknesses_exclude_the_identified_one_and_repeats():
+    assert family.check_member_thicknesses([0.45, 0.35], 0.6416) == [0.45, 0.35]
+    with pytest.raises(ValueError, match=r"identified member's thickness 0\.6416"):
+        family.check_member_thicknesses([0.45, 0.6416], 0.6416)
+    with pytest.raises(ValueError, match="must not repeat"):
+        family.check_member_thicknesses([0.45, 0.45], 0.6416)
+    with pytest.raises(ValueError, match=r"thickness \[mm\]"):
+        family.check_member_thicknesses([0.1], 0.6416)

@@ -59,3 +59,12 @@ def test_a_negative_noise_level_is_refused_before_any_computation(tmp_path: Path
     assert code != 0
     assert "sigma [m, rad] must be" in output and "-0.001" in output
     assert not (tmp_path / "beyond_5r.json").exists()
+
+
+def test_the_family_page_solves_no_more_runs_than_the_doe_chapters_draw(tmp_path: Path) -> None:
+    # n_validation is the DOE chapter's (the build passes it); family_runs are the draw's first
+    args = ["-p", "n_validation", "10", "-p", "family_runs", "20"]
+    code, output = _run_with("nonlinear_family", args, tmp_path)
+    assert code != 0
+    assert "family_runs must be in [1, 10], got 20" in output
+    assert not (tmp_path / "nonlinear_family.json").exists()

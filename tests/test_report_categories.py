@@ -7,6 +7,7 @@ import pytest
 
 from mechlib import categories as cat
 from mechlib import report
+from mechlib.pipeline import verdicts
 from mechlib.records import Recorder
 
 
@@ -115,7 +116,9 @@ def test_not_reproduced_needs_what_was_tried() -> None:
     row = report.not_reproduced_row(
         "Table 5", "MAX % error", [1e-3, 0.62], [[2e-8, 3e-8], [10.3, 1031.8]], tried="both"
     )
-    assert row["category"] == cat.CAT_NOT_REPRODUCED and row["verdict"].startswith("diverges")
+    assert row["category"] == cat.CAT_NOT_REPRODUCED
+    assert row["verdict"] == "not reproduced in any setting — both"  # not "diverges"
+    assert not verdicts.row_holds(row)
     with pytest.raises(ValueError, match="tried"):
         report.not_reproduced_row("Table 5", "q", [1.0], [2.0], tried=" ")
 

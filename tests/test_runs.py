@@ -203,6 +203,11 @@ def test_a_chapter_gets_its_inputs_from_the_upstream_record(tmp_path: Path, caps
     with pytest.raises(FileNotFoundError, match=r"'hexflex_model'.*make notebooks"):
         execute.chapter_inputs("virtual_experiments", tmp_path, strict=True)
     assert capsys.readouterr().err == ""
+    # the family page draws the DOE chapter's validation runs: its seed and its size
+    doe_values = json.loads((references / "virtual_experiments.json").read_text())["values"]
+    family = execute.chapter_inputs("nonlinear_family", references, strict=True)
+    assert family["seed"] == doe_values["parameters.seed"]["value"]
+    assert family["n_validation"] == doe_values["parameters.n_validation"]["value"]
 
 
 def test_a_run_reads_the_default_build_inputs_with_a_note(

@@ -15,6 +15,8 @@ import time
 
 import numpy as np
 
+from mechlib.params import check_int
+
 #: Distances [N] from the reference run at which the reused tangent is tried.
 REUSE_DISTANCES_N = (0.02, 0.05, 0.1, 0.2)
 #: Chord corrections allowed per load; a load not converged by then counts as a failure.
@@ -27,9 +29,29 @@ DESIGN_SIZES = (200, 1000, 10_000)
 
 def nearest_neighbour_distances(n_runs: int, seed: int = 2010) -> np.ndarray:
     """Distance [N] from each run of a seeded uniform design in [−1, 1]⁶ N to its nearest
-    other run (Euclidean, in force space), shape (n_runs,)."""
+    other run (Euclidean, in force space).
+
+    Parameters
+    ----------
+    n_runs : int
+        Runs of the design, ≥ 2.
+    seed : int
+        Seed of the design's draw (``numpy.random.default_rng``).
+
+    Returns
+    -------
+    numpy.ndarray (n_runs,)
+        Per run, the distance [N] to its nearest other run.
+
+    Raises
+    ------
+    ValueError, TypeError
+        If ``n_runs`` is not an integer ≥ 2 or ``seed`` not a non-negative integer.
+    """
     from scipy.spatial import cKDTree
 
+    n_runs = check_int("n_runs", n_runs, low=2)
+    seed = check_int("seed", seed, low=0)
     design = np.random.default_rng(seed).uniform(-1.0, 1.0, (n_runs, 6))
     dist, _ = cKDTree(design).query(design, k=2)
     return dist[:, 1]
@@ -37,7 +59,27 @@ def nearest_neighbour_distances(n_runs: int, seed: int = 2010) -> np.ndarray:
 
 def chord_with(solver, solve, u: np.ndarray, target: np.ndarray, tol: float) -> tuple[int, bool]:
     """Anderson-accelerated chord iterations with the fixed factorisation ``solve`` from ``u``
-    towards equilibrium under ``target``: (corrections used, converged to ``tol``)."""
+    towards equilibrium under ``target``.
+
+    Parameters
+    ----------
+    solver : NonlinearSolver
+        The solver whose residual is driven to zero.
+    solve : callable
+        A factorised tangent: residual (n_dofs,) → correction (n_dofs,).
+    u : numpy.ndarray (n_dofs,)
+        The start [mm].
+    target : numpy.ndarray (n_dofs,)
+        The load vector to equilibrate.
+    tol : float
+        Converged when ‖residual‖ ≤ ``tol`` ‖target‖.
+
+    Returns
+    -------
+    tuple of (int, bool)
+        The corrections used (at most ``REUSE_MAX_CORRECTIONS``), and whether the iteration
+        converged to ``tol`` (False also when an element inverted).
+    """
     from mechlib.hexflex.nonlinear import Anderson
 
     scale = np.linalg.norm(target)
@@ -57,7 +99,18 @@ def chord_with(solver, solve, u: np.ndarray, target: np.ndarray, tol: float) -> 
 
 def tangent_reuse() -> dict[str, float]:
     """Corrections and time of the reused-tangent chord at each of ``REUSE_DISTANCES_N``,
-    against the default solver on the same loads."""
+    against the default solver on the same loads.
+
+    Returns
+    -------
+    dict of str to float
+        ``n_dofs``; per distance ``d`` (formatted ``{d:g}``): ``default_{d}_s`` and
+        ``default_{d}_factorisations`` (the default solver's wall time [s] and
+        factorisations), ``reuse_{d}_s``, ``reuse_{d}_corrections`` and
+        ``reuse_{d}_converged`` (1.0 or 0.0) for the reused tangent; per design size ``n`` of
+        ``DESIGN_SIZES``: ``nn_{n}_median_N`` and ``nn_{n}_p05_N``, the median and 5th
+        percentile of :func:`nearest_neighbour_distances` [N].
+    """
     from mechlib.bench.nonlinear import _chapter_spec
     from mechlib.hexflex.nonlinear import NEWTON_TOL, NonlinearSolver
 
@@ -93,7 +146,13 @@ def tangent_reuse() -> dict[str, float]:
 
 
 def print_reuse() -> None:
-    """Print :func:`tangent_reuse`'s table."""
+    """Print :func:`tangent_reuse`'s table.
+
+    Returns
+    -------
+    None
+        The table goes to standard output.
+    """
     r = tangent_reuse()
     print(f"Reusing one factorised tangent ({int(r['n_dofs'])} DOFs), chord + Anderson "
           f"({REUSE_ANDERSON_DEPTH}), at most {REUSE_MAX_CORRECTIONS} corrections (time without "

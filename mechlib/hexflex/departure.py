@@ -69,6 +69,12 @@ def parity_summary(split: dict[str, np.ndarray], scale: object) -> dict[str, np.
     scale : array_like (k,)
         Each component's range (e.g. its largest |response| over the runs), > 0.
 
+    Returns
+    -------
+    dict
+        ``even``, ``odd`` and ``departure``, each (k,) [%]: the largest |part| over the runs,
+        per component, as a percentage of that component's ``scale``.
+
     Raises
     ------
     ValueError
@@ -94,6 +100,18 @@ def linear_poses(solver: NonlinearSolver, forces: object) -> np.ndarray:
         The non-linear solver whose linear counterpart is wanted.
     forces : array_like (n, 6)
         Actuator forces [N] within the model's bound.
+
+    Returns
+    -------
+    numpy.ndarray (n, 6)
+        The linear stage poses [µm, µrad], one row per force vector, as
+        :meth:`mechlib.hexflex.model.HexFlexModel.pose_of` fits them.
+
+    Raises
+    ------
+    ValueError
+        If ``forces`` is not (n, 6) (or (6,)) finite values within ±
+        :data:`mechlib.hexflex.model.MAX_FORCE_N`.
     """
     model = solver.model
     f = model.check_forces(forces)
@@ -104,6 +122,17 @@ def linear_poses(solver: NonlinearSolver, forces: object) -> np.ndarray:
 
 def relative_change(values: object, reference: object) -> np.ndarray:
     """max over runs |values − reference| / max over runs |reference|, per column [%].
+
+    Parameters
+    ----------
+    values, reference : array_like (n, k)
+        The quantity on two discretisations (runs by rows, components by columns), one shape.
+
+    Returns
+    -------
+    numpy.ndarray (k,)
+        Per column, the largest |values − reference| over the rows as a percentage of the
+        largest |reference| over the rows.
 
     Raises
     ------
@@ -131,6 +160,11 @@ def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
         The model and quadrature of the non-linear runs to compare with.
     forces : array_like (n, 6)
         Actuator forces [N] within the model's bound.
+
+    Returns
+    -------
+    numpy.ndarray (n, 6)
+        The linear stage poses [µm, µrad] on ``spec``'s mesh, with its quadrature.
     """
     from mechlib.hexflex.experiments import model_for, solver_for
     from mechlib.hexflex.problem import QUAD_ORDER

@@ -46,9 +46,58 @@ class Member:
 
 
 def check_thickness(thickness: float) -> float:
-    """A plate thickness [mm] within :data:`DIMENSION_BOUNDS`."""
+    """A plate thickness [mm] within :data:`DIMENSION_BOUNDS`.
+
+    Parameters
+    ----------
+    thickness : float
+        The plate thickness [mm].
+
+    Returns
+    -------
+    float
+        ``thickness`` as a float.
+
+    Raises
+    ------
+    ValueError, TypeError
+        If it is not a finite number within ``DIMENSION_BOUNDS["thickness"]`` (named, with the
+        bounds).
+    """
     lo, hi = DIMENSION_BOUNDS["thickness"]
     return check_float("thickness [mm]", thickness, low=lo, high=hi)
+
+
+def check_member_thicknesses(thicknesses: Sequence[float], identified: float) -> list[float]:
+    """The plate thicknesses [mm] of the members to identify besides the identified one.
+
+    Parameters
+    ----------
+    thicknesses : sequence of float
+        The other members' plate thicknesses [mm], each within the layout's bounds.
+    identified : float
+        The identified member's plate thickness [mm] (that member is not identified again).
+
+    Returns
+    -------
+    list of float
+        ``thicknesses`` as floats, in the order given.
+
+    Raises
+    ------
+    ValueError
+        On a thickness out of bounds, one given twice, or one equal to ``identified`` (its
+        member would replace the identified one).
+    """
+    out = [check_thickness(t) for t in thicknesses]
+    if identified in out:
+        raise ValueError(
+            f"thicknesses must not contain the identified member's thickness {identified!r} mm "
+            f"(that member is the model page's own), got {out}"
+        )
+    if len(set(out)) != len(out):
+        raise ValueError(f"thicknesses must not repeat a value, got {out}")
+    return out
 
 
 def frame_reach(
@@ -59,10 +108,34 @@ def frame_reach(
     young: float = AL7075_YOUNG_MPA,
     poisson: float = AL7075_POISSON,
 ) -> np.ndarray:
-    """How close the beam model gets to ``target`` at each fixed thickness: the worst relative
-    error [%] of the four magnitudes after :func:`mechlib.hexflex.frame.prefit` of ``free``
-    within the layout's bounds, shape (len(thicknesses),). A thickness whose error stays large
-    has no member of the family with this layout."""
+    """How close the beam model gets to ``target`` at each fixed thickness.
+
+    A thickness whose error stays large has no member of the family with this layout.
+
+    Parameters
+    ----------
+    target : sequence of 4 floats
+        The magnitudes of :data:`mechlib.hexflex.identify.TARGET_LABELS` (Eq 8's).
+    start : HexFlexGeometry
+        Where each fit starts; its dimensions other than ``thickness`` and ``free`` are kept.
+    thicknesses : sequence of float
+        Plate thicknesses [mm], each within the layout's bounds.
+    free : sequence of str
+        The dimensions :func:`mechlib.hexflex.frame.prefit` fits at each thickness.
+    young, poisson : float
+        Young's modulus [MPa] and Poisson's ratio of the beam model.
+
+    Returns
+    -------
+    numpy.ndarray (len(thicknesses),)
+        Per thickness, the worst relative error [%] of the four magnitudes against ``target``
+        after the beam model's fit of ``free`` within the layout's bounds.
+
+    Raises
+    ------
+    ValueError
+        On a thickness out of bounds (before any fit).
+    """
     out = []
     for t in thicknesses:
         g = start.replace(thickness=check_thickness(t))
@@ -96,12 +169,23 @@ def identify_member(
     mesh_fraction : float
         As for :func:`mechlib.hexflex.model.model_maker`.
     free, max_evaluations, tol
-        As for :func:`mechlib.hexflex.identify.identify`.
+        As for :func:`mechlib.hexflex.identify.identify`: ``tol`` is the largest
+        |log(achieved / target)| over the four magnitudes that the member may keep.
+    young, poisson : float
+        Young's modulus [MPa] and Poisson's ratio of the FE and beam models.
+
+    Returns
+    -------
+    Member
+        The identified geometry, its FE magnitudes, their worst relative error [%] against
+        ``target`` and the number of FE models built.
 
     Raises
     ------
     ValueError
-        On a thickness out of bounds, or bad identification settings.
+        On a thickness out of bounds or bad identification settings; and when the best
+        geometry found within ``max_evaluations`` FE models misses ``target`` by more than
+        ``tol`` (the message names the thickness, the misfit reached and ``tol``).
     """
     g = start.replace(thickness=check_thickness(thickness))
     prefit, _ = frame.prefit(target, g, free, young, poisson)
@@ -115,5 +199,14 @@ def identify_member(
         max_evaluations=max_evaluations,
         tol=tol,
     )
-    worst = float(100 * np.abs(np.asarray(fit.achieved) / np.asarray(target) - 1).max())
+    achieved, goal = np.asarray(fit.achieved), np.asarray(target)
+    misfit = float(np.abs(np.log(achieved / goal)).max())  # identify's own stopping measure
+    worst = float(100 * np.abs(achieved / goal - 1).max())
+    if not misfit <= tol:  # NaN: no usable fit either
+        raise ValueError(
+            f"the member with plate thickness {g.thickness:g} mm misses the target by "
+            f"max |log(achieved / target)| = {misfit:.3g} (worst relative error {worst:.3g} %) "
+            f"after {fit.n_evaluations} FE models, more than tol = {tol:g}; allow more "
+            f"max_evaluations (got {max_evaluations}) or a larger tol, or drop this thickness"
+        )
     return Member(fit.geometry, np.asarray(fit.achieved), worst, fit.n_evaluations)

@@ -1,56 +1,42 @@
 """A physics-based, hyper-reduced reduced-order model (ROM) of the geometrically non-linear HexFlex.
 
-Basis: the six static modes ``φ_j = K₀⁻¹ L e_j`` (the linear responses to unit actuator forces)
-and their 21 static modal derivatives ``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` (Idelsohn & Cardona 1985;
-Jain & Tiso 2017), ``N₂`` the quadratic part of the SVK internal force, which is an exact cubic:
+**Basis** (:mod:`mechlib.hexflex.rom_basis`). The six static modes ``φ_j = K₀⁻¹ L e_j`` (the
+linear responses to unit actuator forces) and their 21 static modal derivatives
+``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` (Idelsohn & Cardona 1985; Jain & Tiso 2017), with ``N₂`` the
+quadratic part of the Saint Venant–Kirchhoff (SVK) internal force ``f``, which is an exact cubic:
 ``N₂(x, x) = (f(x) + f(−x)) / 2`` and, by polarisation,
-``N₂(a, b) = (N₂(a+b) − N₂(a) − N₂(b)) / 2``;
-optionally augmented by a POD of converged full non-linear solutions given by the caller (the
-part of them outside the modes and derivatives, in the energy inner product ``xᵀ K₀ y`` by
-default); orthonormalised (Euclidean). The ECSW weights fit the quadratic and cubic parts of the
-non-linear force separately on the second-order responses at seeded forces and the snapshots.
+``N₂(a, b) = (N₂(a+b) − N₂(a) − N₂(b)) / 2``. Optional additions: a POD of converged full
+non-linear solutions given by the caller (``snapshots``, ``n_pod``), and a POD of third-order
+corrections of the second-order responses at the training forces (``n_third``; no full solve),
+each of the part outside the vectors already in the basis, in the energy inner product
+``xᵀ K₀ y`` or the Euclidean one (``pod_inner``). ``modal_derivatives=False`` keeps the
+derivatives out of the basis. The basis is orthonormalised (Euclidean).
 
-Equilibrium: Galerkin projection ``Vᵀ(f(Vq) − L f) = 0``, solved by Newton in ``q``. The
-reduced internal force is evaluated in its exact polynomial form
-(:mod:`mechlib.hexflex.rom_tensors`), which costs the same whatever the number of elements: the
-exact reduced linear stiffness ``Vᵀ K₀ V`` plus the cubic and quartic energy tensors summed over
-an ECSW sample of weighted elements (:mod:`mechlib.hexflex.ecsw`; or over all elements with
-``hyper_reduction=False``, affordable on small meshes only). Poses are ``P q`` with ``P`` the
-model's (linear) pose fit applied to the basis, so the ROM's poses are fitted as the FE's.
-Newton runs on all force vectors at once, from a cubic polynomial in the forces fitted to the
-ROM's own equilibria (3 quartic products a pose instead of 4.9 from the second-order response
-``Φ f + ½ θ(f, f)``, measured).
+**Hyper-reduction** (:mod:`mechlib.hexflex.ecsw`). Energy-conserving sampling and weighting
+(ECSW; Farhat, Avery, Chapman & Cortial 2014; Farhat, Chapman & Avery 2015): a sparse set of
+weighted elements whose summed projected forces reproduce the quadratic and cubic parts of the
+non-linear reduced force, separately, at training states — the second-order responses at
+``n_training`` seeded forces in ``±force_range`` and the snapshots' projections — to the
+relative error ``ecsw_tol`` with at most ``max_elements`` elements.
+``hyper_reduction=False`` sums every element instead (exact Galerkin; small meshes only).
 
-Measured on the identified model (192,843 DOFs, 5004 Q2 elements), 16 validation runs (seed
-2010, uniform in ±1 N) against the full non-linear FE; error = largest |Δpose| as % of each
-component's range over the runs (x y z θx θy θz); snapshots = the 42 runs of Tables 2 and 4;
-timings on 2 shared, busy cores (``make bench`` re-measures the ratio in one run):
+**Reduced force** (:mod:`mechlib.hexflex.rom_tensors`). On the weighted elements the SVK reduced
+internal force is an exact polynomial in the reduced coordinates ``q``: the exact reduced linear
+stiffness ``Vᵀ K₀ V`` plus cubic and quartic energy tensors, so evaluating it costs the same
+whatever the number of elements.
 
-- linear model: 15.3 17.9 1.8 2.8 2.2 0.6.
-- modes + derivatives (27 vectors): 12.8 16.8 1.9 1.6 2.1 7.6 with every element (tensors
-  57 s), 11.7 17.4 1.6 1.6 2.1 7.9 with ECSW at 1e-5 (190 elements): the basis, not the sampling,
-  misses the response (1–4 % of a run's largest component, measured on the identified model).
-- + 12 Euclidean POD vectors (39): ECSW 1e-5 (241 el.) 2.6 2.0 0.27 0.22 0.27 0.86; ECSW 1e-6
-  (382 el.) 1.7 1.4 0.23 0.15 0.17 0.31; every element (exact Galerkin) 1.1 1.5 0.24 0.11 0.13
-  0.26, while the basis holds the solutions to 0.003–0.013 % (projection): Galerkin's own error.
-- + 12 energy POD vectors: ECSW 1e-6 (416 el.) 1.3 1.4 0.44 0.15 0.20 0.48; + 24 (51 vectors,
-  431 el., build 63 s): **0.34 0.42 0.20 0.03 0.03 0.30** (Euclidean, 1e-5: 1.3 1.7 0.21 0.13
-  0.10 0.80). Without the derivatives, 24 and 36 energy POD vectors: 8.7 13.1 1.3 0.5 0.4 4.4 and
-  2.0 3.3 0.52 0.11 0.19 0.87; 12 third-order vectors instead of snapshots (``n_third``, no
-  full run): 4.1 13.1 2.2 1.2 1.7 4.5.
-- online: 1.5–2.8 ms a pose one at a time (27–51 vectors; 4.9 products with the packed quartic
-  tensor from the second-order start, memory-bound), 0.3–0.9 ms a pose in batches of 1000.
-  With the cubic predictor, ``make bench`` (51 vectors, 431 elements, build 64 s after the 42
-  full runs): 2.0 ms a pose one at a time, 3.5·10³ times faster than a full run (6.9 s), 0.43 ms
-  a pose in a batch, 1.6·10⁴ times; pose error 0.42 % of a component's range on 6 runs (linear
-  model 16 %). A float32 copy of the quartic tensor for the first iterations did not measure
-  faster; compressing the derivatives and snapshots into one energy POD of 15–21 vectors (small
-  model) made the errors 10–40 %.
-- rejected: ECSW at 1e-3–1e-4 (small model: worse than the linear model at 10 N; probably
-  because in the stiff derivative coordinates the non-linear force nearly cancels the linear
-  one, which amplifies its relative error); evaluating the sampled elements' forces and tangents
-  online instead of the polynomial (not built: estimated ~10⁸ flops a Newton step for ~400 × 27
-  points against ~10⁶ for the polynomial).
+**Equilibrium.** Galerkin projection ``Vᵀ(f(Vq) − L F) = 0``, solved by Newton in ``q`` on all
+force vectors at once, from a cubic polynomial in the forces fitted to the ROM's own equilibria
+at ``N_PREDICT`` seeded forces; a force vector that does not converge is solved again over
+``CONTINUATION`` load steps. Poses are ``P q``, ``P`` the model's (linear) pose fit applied to
+the basis, so the ROM's poses are fitted as the FE model's.
+
+Design decisions (``make bench`` measures speed and accuracy): modes and derivatives alone miss
+the response by percents of the ranges — the basis, not the sampling — so full solutions join by
+POD; third-order vectors instead of them, dropping the derivatives, or one POD of both did worse.
+Looser ECSW tolerances (1e-3–1e-4) were rejected, probably because in the derivative coordinates
+the non-linear force nearly cancels the linear one, amplifying its error. Evaluating the sampled
+elements online (an estimated hundred times the polynomial's flops) was not built.
 """
 
 from __future__ import annotations

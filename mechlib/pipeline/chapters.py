@@ -34,12 +34,14 @@ CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
     },
-    # the family page solves the DOE chapter's validation draw on other members (and reuses the
-    # identified member's runs from the FE cache, so it runs after that chapter)
+    # the family page solves the DOE chapter's validation draw (its seed and size) on other
+    # members (and reuses the identified member's runs from the FE cache, so it runs after that
+    # chapter)
     "nonlinear_family": {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
         "seed": ("virtual_experiments", "parameters.seed"),
+        "n_validation": ("virtual_experiments", "parameters.n_validation"),
     },
     # the meta-model page holds out the first runs of the DOE chapter's validation draw
     "nonlinear_metamodels": {
