@@ -81,3 +81,36 @@ def test_the_page_figures_draw() -> None:
     assert isinstance(fig, Figure) and len(fig.axes[0].lines) == 4  # 2 curves, 1 point, budget
     assert isinstance(mmplot.error_vs_range([0.25, 0.5, 1.0], w, ["a", "b"], 1.0), Figure)
     assert isinstance(mmplot.latency_accuracy([1.0, 2e3], [5.0, 0.3], ["a", "b"], 1.0, 1e3), Figure)
+
+
+def test_budget_ranges_need_every_smaller_range_within_and_mark_unfitted() -> None:
+    x = np.random.default_rng(1).uniform(-1, 1, (30, 6))
+    exact = surrogates.wrap_model("cubic", _cubic_truth, amplitude=1.0)
+    cases = {a: (a * x, _cubic_truth(a * x)) for a in (0.25, 0.5, 1.0)}
+    lin = {
+        a: surrogates.fit_surrogate("linear", a * x, _cubic_truth(a * x), amplitude=a)
+        for a in (0.25, 1.0)  # not fitted at 0.5
+    }
+    out = surrogates.budget_ranges({"exact": dict.fromkeys(cases, exact), "lin": lin}, cases, 1.0)
+    assert out["amplitudes"].tolist() == [0.25, 0.5, 1.0]
+    assert out["largest"][0] == 1.0 and np.all(out["worst_pct"][0] == 0.0)
+    assert out["fitted"][1].tolist() == [True, False, True] and out["worst_pct"][1, 1] == 0.0
+    assert out["largest"][1] == (0.25 if out["worst_pct"][1, 0] <= 1.0 else 0.0)
+    assert out["worst_pct"][1, 2] > out["worst_pct"][1, 0]  # the cubic term grows with range
+    with pytest.raises(ValueError, match="budget_pct"):
+        surrogates.budget_ranges({}, cases, 0.0)
+
+
+def test_inverse_round_trip_applies_the_forces_and_leaves_unsolved_runs_out() -> None:
+    exact = surrogates.wrap_model("cubic", _cubic_truth, amplitude=1.0)
+    x = np.random.default_rng(2).uniform(-0.5, 0.5, (3, 6))
+    span = np.abs(_cubic_truth(x)).max(axis=0)
+
+    def truth_missing_one(forces):  # a truth that could not solve run 1
+        return np.array([0, 2]), _cubic_truth(forces[[0, 2]]) + 0.01, ["run 1 failed"]
+
+    out = surrogates.inverse_round_trip(exact, _cubic_truth(x), truth_missing_one, span)
+    assert out["solved"].tolist() == [0, 2] and out["converged"].all()
+    assert np.allclose(out["error_pct"], 100 * 0.01 / span)
+    with pytest.raises(ValueError, match="span must be positive"):
+        surrogates.inverse_round_trip(exact, _cubic_truth(x), truth_missing_one, np.zeros(6))

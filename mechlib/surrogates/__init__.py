@@ -65,17 +65,20 @@ from mechlib.surrogates.scoring import (
     score,
     summary_table,
 )
+from mechlib.surrogates.study import budget_ranges, inverse_round_trip
 
 __all__ = [
     "FAMILIES",
     "LABELS",
     "PHYSICS",
     "Surrogate",
+    "budget_ranges",
     "compare_families",
     "compare_with_truth",
     "cross_validate",
     "cv_folds",
     "fit_surrogate",
+    "inverse_round_trip",
     "invert",
     "jacobian",
     "latency_us",

@@ -1,0 +1,97 @@
+"""Comparisons built on the scoring functions: the force range each model keeps within an error
+budget, and the inverse checked against the truth (the meta-model page's budget and control
+sections)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+
+from mechlib.params import check_float, check_matrix
+from mechlib.surrogates.families import Surrogate
+from mechlib.surrogates.inverse import invert
+from mechlib.surrogates.scoring import score
+
+
+def budget_ranges(
+    models: Mapping[str, Mapping[float, Surrogate]],
+    cases: Mapping[float, tuple[object, object]],
+    budget_pct: float,
+) -> dict[str, np.ndarray]:
+    """Each model's largest error at each force range, and the largest range it keeps within
+    the budget (that range and every smaller one).
+
+    Parameters
+    ----------
+    models : mapping
+        Model name → {range [N]: the model to score at that range}; a range a model has no
+        entry for was not fitted (e.g. fewer runs than terms).
+    cases : mapping
+        Range [N] → (forces (runs, 6), true poses (runs, 6)), the held-out runs at that range.
+    budget_pct : float
+        Largest allowed error, % of each component's range, > 0.
+
+    Returns
+    -------
+    dict
+        ``amplitudes`` (m,) sorted; ``worst_pct`` (models, m) the worst component's error, 0
+        where not fitted; ``fitted`` (models, m) bool; ``largest`` (models,) the largest range
+        within the budget, 0.0 where the smallest already misses it or is not fitted.
+    """
+    budget_pct = check_float("budget_pct", budget_pct, low=0.0, low_open=True)
+    amps = sorted(cases)
+    if not amps:
+        raise ValueError("cases must hold at least one force range")
+    worst = np.zeros((len(models), len(amps)))
+    fitted = np.zeros((len(models), len(amps)), dtype=bool)
+    for i, by_range in enumerate(models.values()):
+        for j, a in enumerate(amps):
+            if a in by_range:
+                worst[i, j] = score(by_range[a], *cases[a])["worst_pct"]
+                fitted[i, j] = True
+    ok = np.cumprod(fitted & (worst <= budget_pct), axis=1).astype(bool)
+    amp = np.array(amps, dtype=float)
+    largest = np.array([amp[row][-1] if row.any() else 0.0 for row in ok])
+    return {"amplitudes": amp, "worst_pct": worst, "fitted": fitted, "largest": largest}
+
+
+def inverse_round_trip(
+    surrogate: Surrogate,
+    targets: object,
+    truth: Callable[[np.ndarray], tuple],
+    span: Sequence[float],
+) -> dict[str, np.ndarray]:
+    """Forces for desired poses from a model's inverse, applied to the truth.
+
+    Parameters
+    ----------
+    surrogate : Surrogate
+        The model inverted (Newton from its linear part, :func:`invert`).
+    targets : array_like (runs, 6)
+        Desired poses.
+    truth : callable
+        ``truth(forces) -> (ok, poses, ...)``: the indices of the runs the truth solved and their
+        poses, then anything (as :func:`mechlib.hexflex.experiments.run_keeping_failures`
+        returns; a run it could not solve is left out, not averaged in).
+    span : sequence of 6 floats
+        Each component's range [µm, µrad] that errors are divided by, > 0.
+
+    Returns
+    -------
+    dict
+        ``forces`` (runs, 6) [N]; ``converged`` (runs,) Newton within its tolerance; ``solved``
+        the indices the truth solved; ``error_pct`` (6,) the largest |reached − target| as % of
+        ``span`` over the solved runs.
+    """
+    psi = check_matrix("targets", targets, shape=(None, surrogate.n_outputs))
+    s = check_matrix("span", np.asarray(span, dtype=float)[None, :], shape=(1, psi.shape[1]))[0]
+    if np.any(s <= 0):
+        raise ValueError(f"span must be positive in every component, got {s.tolist()}")
+    inv = invert(surrogate, psi)
+    ok, reached = truth(inv["forces"])[:2]
+    ok = np.asarray(ok, dtype=int)
+    if len(ok) == 0:
+        raise ValueError("the truth solved none of the inverse's force vectors")
+    err = 100 * np.abs(np.asarray(reached) - psi[ok]).max(axis=0) / s
+    return {"forces": inv["forces"], "converged": inv["converged"], "solved": ok, "error_pct": err}
