@@ -33,7 +33,7 @@ def test_hits_are_logged_and_a_sample_recomputes_bit_identically(tmp_path, monke
     checks = cc.check_sample(log, cache, {"nonlinear": 1, "linear": 5})
     assert [c.kind for c in checks].count("nonlinear") == 1
     assert [c.kind for c in checks].count("linear") == 1  # all there are
-    assert all(c.identical and c.max_abs_diff == 0.0 for c in checks)
+    assert all(c.identical and c.agrees and c.max_abs_diff == 0.0 for c in checks)
 
 
 def test_a_tampered_cache_file_is_found(tmp_path, monkeypatch) -> None:
@@ -41,9 +41,12 @@ def test_a_tampered_cache_file_is_found(tmp_path, monkeypatch) -> None:
     cache, log = _log_two_builds(tmp_path, monkeypatch, forces)
     (entry,) = [e for e in cc.read_log(log) if e["kind"] == "nonlinear"]
     stored = np.load(cache / entry["file"])
-    np.save(cache / entry["file"], stored * (1 + 1e-12))
+    np.save(cache / entry["file"], stored * (1 + 1e-12))  # round-off: agrees, not identical
     (check,) = cc.check_sample(log, cache, {"nonlinear": 1})
-    assert not check.identical and 0 < check.max_abs_diff < 1e-6
+    assert not check.identical and check.agrees and 0 < check.max_abs_diff < 1e-6
+    np.save(cache / entry["file"], stored * (1 + 1e-6))  # beyond the tolerance
+    (check,) = cc.check_sample(log, cache, {"nonlinear": 1})
+    assert not check.identical and not check.agrees
 
 
 def test_the_sample_is_seeded_and_refuses_bad_counts() -> None:

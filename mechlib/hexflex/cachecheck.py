@@ -5,9 +5,9 @@ The determinism re-run (:mod:`mechlib.pipeline.rerun`) starts from the first run
 logs every hit (``$MECHLIB_FE_LOG``, written by
 :func:`mechlib.hexflex.experiments.run_experiments`);
 :func:`check_sample` then recomputes a seeded sample of the logged tasks in this process and
-compares each with its cached file. Together the two cover what a fully cold re-run would: the
-records check every seeded stream and every computation downstream of the FE solves, the sample
-checks the solves themselves.
+compares each with its cached file (agreement within ``AGREE_RTOL``). The records check every
+seeded stream and every computation downstream of the FE solves; the sample checks the solves
+(the displacement fields of :mod:`mechlib.hexflex.snapshots` are not logged, nor sampled).
 """
 
 from __future__ import annotations
@@ -24,17 +24,25 @@ from mechlib.params import check_int
 
 #: seed of the sample of logged tasks that :func:`check_sample` recomputes
 SAMPLE_SEED = 2010
+#: a recomputed task agrees with its cached result when every pose component differs by at most
+#: this share of the task's largest |pose component|: far below the non-linear solver's relative
+#: residual tolerance, far above round-off. Bit-identity is not required: a solve's last digits
+#: differ between the process that first ran it and a fresh one (measured on the identified
+#: model: up to 4.4e-9 µm, about 1e-13 of the largest component)
+AGREE_RTOL = 1e-9
 
 
 @dataclass(frozen=True)
 class CacheCheck:
-    """One cached task recomputed: its cache file, kind, rows, and whether the fresh result is
-    bit-identical (``max_abs_diff`` [µm, µrad]: the largest difference, 0 when identical)."""
+    """One cached task recomputed: its cache file, kind, rows, whether the fresh result is
+    bit-identical, whether it agrees within ``AGREE_RTOL``, and ``max_abs_diff`` [µm, µrad],
+    the largest difference (0 when identical)."""
 
     file: str
     kind: str
     rows: int
     identical: bool
+    agrees: bool
     max_abs_diff: float
 
 
@@ -101,6 +109,7 @@ def check_sample(
             fresh = task_poses(spec, e["kind"], np.array(e["forces"]), e["steps"])
             same = fresh.shape == cached.shape and np.array_equal(fresh, cached)
             diff = float(np.max(np.abs(fresh - cached))) if fresh.shape == cached.shape else np.inf
-            out.append(CacheCheck(e["file"], e["kind"], len(e["forces"]), same, diff))
+            agrees = diff <= AGREE_RTOL * float(np.abs(cached).max())
+            out.append(CacheCheck(e["file"], e["kind"], len(e["forces"]), same, agrees, diff))
         release_models()
     return out
