@@ -41,24 +41,28 @@ def test_a_thickness_out_of_bounds_is_refused_before_any_model():
 
 def _fake_identify(miss: float):
     """An :func:`ident.identify` stand-in (no FE model): it returns its start with every
-    magnitude ``miss`` (relative) off the target, and keeps the settings it was given."""
+    magnitude ``miss`` (relative) off the target, raising as identify does when that is beyond
+    tol, and keeps the settings it was given."""
     seen = {}
 
     def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol):
         seen.update(max_evaluations=max_evaluations, tol=tol, thickness=start.thickness)
         t = np.asarray(target, dtype=float)
         hist = np.zeros((max_evaluations, len(free) + 4))
-        return ident.Identification(start, t * (1 + miss), t, max_evaluations, hist)
+        fit = ident.Identification(start, t * (1 + miss), t, max_evaluations, hist)
+        if abs(np.log1p(miss)) > tol:
+            raise ident.IdentificationError(f"misfit {abs(np.log1p(miss)):.3g} > tol {tol:g}", fit)
+        return fit
 
     return fake, seen
 
 
-def test_a_member_that_misses_eq8_beyond_tol_is_refused(monkeypatch):
+def test_a_member_that_misses_eq8_beyond_tol_is_refused_by_name(monkeypatch):
     target = ident.target_values(pub.EQ8_ST)
     g = _identified()
     fake, seen = _fake_identify(miss=2e-3)  # |log(1.002)| ≈ 2.0e-3 > tol
     monkeypatch.setattr(ident, "identify", fake)
-    with pytest.raises(ValueError, match=r"thickness 0\.45 mm.*= 0\.002\b.*tol = 0\.001"):
+    with pytest.raises(ident.IdentificationError, match=r"thickness 0\.45 mm: misfit 0\.002 > tol"):
         family.identify_member(target, g, 0.45, 0.5, max_evaluations=3, tol=1e-3)
     assert seen == {"max_evaluations": 3, "tol": 1e-3, "thickness": 0.45}
     # within tol the member is kept, with its worst relative error in percent

@@ -191,7 +191,7 @@ def test_prefit_recovers_a_geometry_from_its_own_magnitudes() -> None:
     truth = HINT.replace(thickness=0.6, beam_width=0.3, radial_width=0.25, beam_length=10.0)
     target = ident.target_values(fr.hexflex_frame_compliance(truth))
     fitted, achieved = fr.prefit(target, HINT, free)
-    np.testing.assert_allclose(achieved, target, rtol=1e-8)
+    np.testing.assert_allclose(achieved, target, rtol=1e-5)  # the anchor: O(1e-6)
     # four magnitudes, four dimensions, full rank (smallest singular value ≈ 0.2): unique
     for name in free:
         assert getattr(fitted, name) == pytest.approx(getattr(truth, name), rel=1e-5)
@@ -202,7 +202,7 @@ def test_prefit_recovers_a_geometry_from_its_own_magnitudes() -> None:
 def test_prefit_reaches_eq8_from_two_starts_at_two_different_geometries() -> None:
     target = ident.target_values(pub.EQ8_ST)
     fitted, achieved = fr.prefit(target, HINT, FREE5, shear=False)
-    np.testing.assert_allclose(achieved, target, rtol=1e-8)
+    np.testing.assert_allclose(achieved, target, rtol=1e-5)  # the anchor: O(1e-6)
 
     def euler_bernoulli(g: geo.HexFlexGeometry) -> np.ndarray:
         return fr.hexflex_frame_compliance(g, shear=False)
@@ -210,7 +210,7 @@ def test_prefit_reaches_eq8_from_two_starts_at_two_different_geometries() -> Non
     sv = np.linalg.svd(ident.log_sensitivity(euler_bernoulli, fitted, FREE5), compute_uv=False)
     assert sv[-1] > 0.1  # rank 4: four combinations of the five dimensions are determined ...
     other, achieved = fr.prefit(target, HINT.replace(radial_width=0.2), FREE5, shear=False)
-    np.testing.assert_allclose(achieved, target, rtol=1e-8)
+    np.testing.assert_allclose(achieved, target, rtol=1e-5)  # the anchor: O(1e-6)
     assert abs(other.radial_width / fitted.radial_width - 1) > 0.05  # ... and the fifth is not
 
 

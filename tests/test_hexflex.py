@@ -422,7 +422,7 @@ def test_identify_converges_with_an_inexact_surrogate_jacobian() -> None:
     target = ident.target_values(_power_law(truth))
     rough = _EXPONENTS * 1.15  # the surrogate's sensitivities are 15 % off
     fit = ident.identify(SMALL, target, _FREE, _power_law, lambda g: _power_law(g, rough),
-                         max_evaluations=12, tol=1e-6)  # fmt: skip
+                         max_evaluations=12, tol=1e-6, grid_mm=0.0)  # fmt: skip
     assert np.abs(fit.relative_error).max() < 1e-6
     assert fit.n_evaluations < 12
     # least squares with 3 dimensions for 4 magnitudes: the truth is the exact solution
@@ -434,14 +434,18 @@ def test_identify_converges_with_an_inexact_surrogate_jacobian() -> None:
         ident.identify(SMALL, target, ["thickness", "thickness"], _power_law, _power_law)
 
 
-def test_identify_stops_on_a_bound_instead_of_failing() -> None:
-    """A target that needs a dimension beyond its bound: the fit ends on the bound, named."""
+def test_identify_raises_by_name_when_a_bound_holds_the_fit() -> None:
+    """A target that needs a dimension beyond its bound: no convergence, an error naming the
+    misfit and the dimension on the bound, with the best fit attached."""
     low = geo.DIMENSION_BOUNDS["thickness"][0]
     truth = SMALL.replace(thickness=low)
     target = ident.target_values(_power_law(truth)) * np.array([1.5, 1.5, 1.5, 1.2])
-    fit = ident.identify(SMALL, target, _FREE, _power_law, _power_law, max_evaluations=10)
-    assert fit.n_evaluations <= 10
-    assert ident.at_bounds(fit.geometry, _FREE) == ["thickness"]
+    with pytest.raises(ident.IdentificationError, match=r"did not converge.*\['thickness'\]") as e:
+        ident.identify(SMALL, target, _FREE, _power_law, _power_law, max_evaluations=10)
+    assert e.value.result.n_evaluations <= 10
+    assert ident.at_bounds(e.value.result.geometry, _FREE) == ["thickness"]
+    with pytest.raises(ValueError, match=r"grid_mm must be .*0\.01"):
+        ident.identify(SMALL, target, _FREE, _power_law, _power_law, grid_mm=0.01)
 
 
 def test_midplane_shapes_of_the_inverse_forces_move_the_stage_by_the_poses(

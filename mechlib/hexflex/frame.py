@@ -36,6 +36,12 @@ ROARK_THIRD, ROARK_C1, ROARK_C2 = 1.0 / 3.0, 0.21, 1.0 / 12.0
 UM_PER_MM, URAD_PER_RAD, MM_PER_M = 1e3, 1e6, 1e3
 #: Residual [log units] of a geometry the constructor rejects (e¹⁰ ≈ 2·10⁴ times off).
 INFEASIBLE_RESIDUAL = 10.0
+#: Weight of the log change from the start in :func:`prefit` (see there): small against the
+#: magnitudes' sensitivities (singular values ≥ 0.1), so the fit still meets them to ~1e-6.
+ANCHOR_WEIGHT = 1e-3
+#: Stopping tolerances of :func:`prefit`'s least squares: the anchored problem is well posed, so
+#: it is solved to round-off rather than stopped where scipy's defaults (1e-8) would leave it.
+PREFIT_TOLERANCES = {"ftol": 1e-14, "xtol": 1e-14, "gtol": 1e-14}
 #: Stated agreement of the beam model with FE on the magnitudes of Eq 8 (largest relative
 #: difference): with the real, flexible stage and tabs, and with them made nearly rigid (the beam
 #: model's assumption). Set from the first comparison in the hexflex notebook, whose records
@@ -327,8 +333,11 @@ def prefit(
     """Fit the ``free`` dimensions of ``start`` so the frame reaches the four ``target`` magnitudes.
 
     Least squares (scipy's ``dogbox``) on ``log(achieved / target)`` over the logs of the free
-    dimensions, within ``bounds`` (default :data:`geometry.DIMENSION_BOUNDS`). Geometries the
-    constructor rejects give a residual of :data:`INFEASIBLE_RESIDUAL` in every component.
+    dimensions, within ``bounds`` (default :data:`geometry.DIMENSION_BOUNDS`), plus
+    :data:`ANCHOR_WEIGHT` times the log change from ``start``: where the four magnitudes do not
+    fix every free dimension (five free), the fit is the member nearest ``start``, a unique point
+    that round-off cannot move; where they do, the anchor moves the fit by O(weight²). Geometries
+    the constructor rejects give a residual of :data:`INFEASIBLE_RESIDUAL` in every component.
 
     Parameters
     ----------
@@ -368,15 +377,17 @@ def prefit(
         return start.replace(**dict(zip(free, np.clip(np.exp(x), lo, hi).tolist(), strict=True)))
 
     def residual(x: np.ndarray) -> np.ndarray:
+        anchor = ANCHOR_WEIGHT * (x - x0)
         try:
             g = geometry_at(x)
         except ValueError:
-            return np.full(4, INFEASIBLE_RESIDUAL)
-        return np.log(
-            np.abs(target_values(hexflex_frame_compliance(g, young, poisson, shear)) / tgt)
-        )
+            return np.r_[np.full(4, INFEASIBLE_RESIDUAL), anchor]
+        c = target_values(hexflex_frame_compliance(g, young, poisson, shear))
+        return np.r_[np.log(np.abs(c) / tgt), anchor]
 
     # dogbox: 20-30 evaluations; trf crawled on this rank-deficient fit (measured: > 1000)
-    sol = least_squares(residual, x0, bounds=(np.log(lo), np.log(hi)), method="dogbox")
+    sol = least_squares(
+        residual, x0, bounds=(np.log(lo), np.log(hi)), method="dogbox", **PREFIT_TOLERANCES
+    )
     g = geometry_at(sol.x)
     return g, target_values(hexflex_frame_compliance(g, young, poisson, shear))

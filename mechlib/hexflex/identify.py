@@ -33,6 +33,14 @@ TARGET_LABELS: tuple[str, ...] = (
 )
 #: Largest Newton step of the FE fit in log-dimension (a factor e^0.3 ≈ 1.35 per iteration).
 MAX_LOG_STEP = 0.3
+#: Grid [mm] of the dimensions the FE fit evaluates (1 nm, far below any machining tolerance):
+#: round-off on another processor moves an identified dimension by ~1e-9 of itself, and the
+#: mesher turns such a change into another element count; on the grid both see one geometry.
+#: A grid step moves a flexure's compliance by < 2e-5 of itself (0.28 mm wide, cubed).
+GRID_MM = 1e-6
+#: FE models :func:`identify` may build by default: measured, the fits of the book converge
+#: in 3–8; the budget only ends a fit that does not converge, with an error.
+MAX_EVALUATIONS = 20
 
 ComplianceFn = Callable[[HexFlexGeometry], np.ndarray]
 
@@ -124,6 +132,14 @@ def log_sensitivity(
     return out
 
 
+class IdentificationError(RuntimeError):
+    """An identification that did not meet its tolerance; ``result`` holds the best fit."""
+
+    def __init__(self, message: str, result: Identification) -> None:
+        super().__init__(message)
+        self.result = result
+
+
 @dataclass(frozen=True)
 class Identification:
     """Result of :func:`identify`: geometry, achieved and target magnitudes, the fit history.
@@ -150,16 +166,22 @@ def identify(
     free: Sequence[str],
     compliance_fn: ComplianceFn,
     surrogate_fn: ComplianceFn,
-    max_evaluations: int = 8,
+    max_evaluations: int = MAX_EVALUATIONS,
     tol: float = 1e-3,
+    grid_mm: float = GRID_MM,
 ) -> Identification:
     """Fit the ``free`` dimensions of ``start`` so that ``compliance_fn`` meets ``target``.
 
     Newton iterations on r(x) = log(achieved / target), x = log(free dimensions), with the
-    Jacobian of ``surrogate_fn`` at the current geometry (minimum-norm step when more dimensions
-    are free than magnitudes, steps capped at ``MAX_LOG_STEP``, halved while the geometry is
-    invalid or leaves its bounds). Stops at max |r| <= ``tol`` or after ``max_evaluations`` calls
-    of ``compliance_fn``; returns the best geometry seen.
+    Jacobian J of ``surrogate_fn`` at the current geometry, steps capped at ``MAX_LOG_STEP``
+    and halved while the geometry is invalid or leaves its bounds. When more dimensions are free
+    than magnitudes, the step is ``−J⁺ r + (I − J⁺J)(x_start − x)``: it meets the magnitudes to
+    first order and, in the directions they do not fix, returns to ``start`` — so the fit
+    converges to one point, the member nearest ``start``, whatever path round-off takes (a
+    plain minimum-norm step drifts along the unfixed directions by the path's history). Every
+    geometry evaluated has its free dimensions on a ``grid_mm`` grid. Converged when
+    max |r| <= ``tol``: the stopping rule; ``max_evaluations`` only bounds a fit that does not
+    converge, and then :class:`IdentificationError` is raised.
 
     Parameters
     ----------
@@ -175,54 +197,88 @@ def identify(
     max_evaluations : int
         Calls of ``compliance_fn`` allowed, in [1, 100].
     tol : float
-        Stop when every |log(achieved / target)| is at most this, in (0, 1].
+        Converged when every |log(achieved / target)| is at most this, in (0, 1].
+    grid_mm : float
+        Grid [mm] of the free dimensions evaluated, in [0, 1e-3] (0: no rounding).
 
     Returns
     -------
     Identification
+        The first geometry evaluated that meets ``tol``.
 
     Raises
     ------
     ValueError
-        On an unknown or repeated free dimension, a bad target or budget.
+        On an unknown or repeated free dimension, a bad target, budget or grid.
+    IdentificationError
+        When no geometry within ``max_evaluations`` FE models meets ``tol``, or no admissible
+        step is left (e.g. a bound holds the fit); it names the misfit reached, the
+        evaluations, ``tol`` and the free dimensions on a bound, and carries the best fit.
     """
     free = check_free(free)
     target = check_target(target)
     max_evaluations = check_int("max_evaluations", max_evaluations, low=1, high=100)
     tol = check_float("tol", tol, low=0.0, high=1.0, low_open=True)
+    grid_mm = check_float("grid_mm", grid_mm, low=0.0, high=1e-3)
     lo = np.log([DIMENSION_BOUNDS[n][0] for n in free])
     hi = np.log([DIMENSION_BOUNDS[n][1] for n in free])
-    x = np.log([getattr(start, n) for n in free])
-    g = start
+    g = _on_grid(start, free, np.log([getattr(start, n) for n in free]), grid_mm)
+    if g is None:
+        raise ValueError(f"start must be a valid geometry on the {grid_mm:g} mm grid, got {start}")
+    x = anchor = np.log([getattr(g, n) for n in free])
     history: list[np.ndarray] = []
-    for _ in range(max_evaluations):
+    converged = False
+    while len(history) < max_evaluations:
         achieved = np.abs(target_values(compliance_fn(g)))  # a sign flip is a misfit, not NaN
         history.append(np.r_[[getattr(g, n) for n in free], achieved])
         r = np.log(achieved / target)
-        if np.abs(r).max() <= tol or len(history) == max_evaluations:
+        if np.abs(r).max() <= tol:
+            converged = True
             break
-        step = -np.linalg.lstsq(log_sensitivity(surrogate_fn, g, free), r, rcond=None)[0]
+        if len(history) == max_evaluations:
+            break
+        jac = log_sensitivity(surrogate_fn, g, free)
+        pinv = np.linalg.pinv(jac)
+        step = -pinv @ r + (np.eye(len(free)) - pinv @ jac) @ (anchor - x)
         step *= min(1.0, MAX_LOG_STEP / np.abs(step).max())
         for _ in range(20):
             trial = x + step
             inside = np.all((trial >= lo) & (trial <= hi))
-            candidate = _valid(start, free, trial) if inside else None
+            candidate = _on_grid(start, free, trial, grid_mm) if inside else None
             if candidate is not None:
-                x, g = trial, candidate
+                g = candidate
+                x = np.log([getattr(g, n) for n in free])
                 break
             step *= 0.5
         else:
-            break  # no admissible step: stay at the best point
+            break  # no admissible step left
     hist = np.asarray(history)
     cost = np.max(np.abs(np.log(hist[:, len(free) :] / target)), axis=1)
-    best_row = hist[int(np.argmin(cost))]
-    best = start.replace(**{n: float(v) for n, v in zip(free, best_row[: len(free)], strict=True)})
-    return Identification(best, best_row[len(free) :], target, len(history), hist)
+    i = len(hist) - 1 if converged else int(np.argmin(cost))
+    best = start.replace(**{n: float(v) for n, v in zip(free, hist[i, : len(free)], strict=True)})
+    fit = Identification(best, hist[i, len(free) :], target, len(history), hist)
+    if not converged:
+        raise IdentificationError(
+            f"the identification did not converge: max |log(achieved / target)| = "
+            f"{cost[i]:.3g} at best after {len(hist)} FE models, more than tol = {tol:g} "
+            f"(free dimensions on a bound: {at_bounds(best, free) or 'none'}); allow more "
+            f"max_evaluations (got {max_evaluations}, at most 100), a larger tol, or other "
+            f"free dimensions",
+            fit,
+        )
+    return fit
 
 
-def _valid(start: HexFlexGeometry, free: list[str], logdims: np.ndarray) -> HexFlexGeometry | None:
+def _on_grid(
+    start: HexFlexGeometry, free: list[str], logdims: np.ndarray, grid_mm: float
+) -> HexFlexGeometry | None:
+    """``start`` with the ``free`` dimensions exp(``logdims``) rounded to the grid, or None
+    if that geometry is invalid."""
+    dims = np.exp(logdims)
+    if grid_mm > 0:
+        dims = np.round(dims / grid_mm) * grid_mm
     try:
-        return start.replace(**dict(zip(free, np.exp(logdims), strict=True)))
+        return start.replace(**dict(zip(free, dims.tolist(), strict=True)))
     except ValueError:
         return None
 
