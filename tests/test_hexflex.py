@@ -422,7 +422,7 @@ def test_identify_converges_with_an_inexact_surrogate_jacobian() -> None:
     target = ident.target_values(_power_law(truth))
     rough = _EXPONENTS * 1.15  # the surrogate's sensitivities are 15 % off
     fit = ident.identify(SMALL, target, _FREE, _power_law, lambda g: _power_law(g, rough),
-                         max_evaluations=12, tol=1e-6, grid_mm=0.0)  # fmt: skip
+                         max_evaluations=12, tol=1e-6, grid_decimals=None)  # fmt: skip
     assert np.abs(fit.relative_error).max() < 1e-6
     assert fit.n_evaluations < 12
     # least squares with 3 dimensions for 4 magnitudes: the truth is the exact solution
@@ -444,8 +444,8 @@ def test_identify_raises_by_name_when_a_bound_holds_the_fit() -> None:
         ident.identify(SMALL, target, _FREE, _power_law, _power_law, max_evaluations=10)
     assert e.value.result.n_evaluations <= 10
     assert ident.at_bounds(e.value.result.geometry, _FREE) == ["thickness"]
-    with pytest.raises(ValueError, match=r"grid_mm must be .*0\.01"):
-        ident.identify(SMALL, target, _FREE, _power_law, _power_law, grid_mm=0.01)
+    with pytest.raises(ValueError, match=r"grid_decimals must be .*2"):
+        ident.identify(SMALL, target, _FREE, _power_law, _power_law, grid_decimals=2)
 
 
 def test_midplane_shapes_of_the_inverse_forces_move_the_stage_by_the_poses(

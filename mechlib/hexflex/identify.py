@@ -33,11 +33,11 @@ TARGET_LABELS: tuple[str, ...] = (
 )
 #: Largest Newton step of the FE fit in log-dimension (a factor e^0.3 ≈ 1.35 per iteration).
 MAX_LOG_STEP = 0.3
-#: Grid [mm] of the dimensions the FE fit evaluates (1 nm, far below any machining tolerance):
-#: round-off on another processor moves an identified dimension by ~1e-9 of itself, and the
-#: mesher turns such a change into another element count; on the grid both see one geometry.
-#: A grid step moves a flexure's compliance by < 2e-5 of itself (0.28 mm wide, cubed).
-GRID_MM = 1e-6
+#: Decimals [mm] of the dimensions the FE fit evaluates (1 nm, far below any machining
+#: tolerance): round-off on another processor moves an identified dimension by ~1e-9 of itself,
+#: and the mesher turns such a change into another element count; on the grid both see one
+#: geometry. A grid step moves a flexure's compliance by < 2e-5 of itself (0.28 mm wide, cubed).
+GRID_DECIMALS = 6
 #: FE models :func:`identify` may build by default: measured, the fits of the book converge
 #: in 3–8; the budget only ends a fit that does not converge, with an error.
 MAX_EVALUATIONS = 20
@@ -168,7 +168,7 @@ def identify(
     surrogate_fn: ComplianceFn,
     max_evaluations: int = MAX_EVALUATIONS,
     tol: float = 1e-3,
-    grid_mm: float = GRID_MM,
+    grid_decimals: int | None = GRID_DECIMALS,
 ) -> Identification:
     """Fit the ``free`` dimensions of ``start`` so that ``compliance_fn`` meets ``target``.
 
@@ -179,9 +179,9 @@ def identify(
     first order and, in the directions they do not fix, returns to ``start`` — so the fit
     converges to one point, the member nearest ``start``, whatever path round-off takes (a
     plain minimum-norm step drifts along the unfixed directions by the path's history). Every
-    geometry evaluated has its free dimensions on a ``grid_mm`` grid. Converged when
-    max |r| <= ``tol``: the stopping rule; ``max_evaluations`` only bounds a fit that does not
-    converge, and then :class:`IdentificationError` is raised.
+    geometry evaluated has its free dimensions rounded to ``grid_decimals`` decimals [mm].
+    Converged when max |r| <= ``tol``: the stopping rule; ``max_evaluations`` only bounds a fit
+    that does not converge, and then :class:`IdentificationError` is raised.
 
     Parameters
     ----------
@@ -198,8 +198,8 @@ def identify(
         Calls of ``compliance_fn`` allowed, in [1, 100].
     tol : float
         Converged when every |log(achieved / target)| is at most this, in (0, 1].
-    grid_mm : float
-        Grid [mm] of the free dimensions evaluated, in [0, 1e-3] (0: no rounding).
+    grid_decimals : int or None
+        Decimals [mm] of the free dimensions evaluated, in [3, 12] (None: no rounding).
 
     Returns
     -------
@@ -219,12 +219,15 @@ def identify(
     target = check_target(target)
     max_evaluations = check_int("max_evaluations", max_evaluations, low=1, high=100)
     tol = check_float("tol", tol, low=0.0, high=1.0, low_open=True)
-    grid_mm = check_float("grid_mm", grid_mm, low=0.0, high=1e-3)
+    if grid_decimals is not None:
+        grid_decimals = check_int("grid_decimals", grid_decimals, low=3, high=12)
     lo = np.log([DIMENSION_BOUNDS[n][0] for n in free])
     hi = np.log([DIMENSION_BOUNDS[n][1] for n in free])
-    g = _on_grid(start, free, np.log([getattr(start, n) for n in free]), grid_mm)
+    g = _on_grid(start, free, np.log([getattr(start, n) for n in free]), grid_decimals)
     if g is None:
-        raise ValueError(f"start must be a valid geometry on the {grid_mm:g} mm grid, got {start}")
+        raise ValueError(
+            f"start must stay valid rounded to {grid_decimals} decimals [mm], got {start}"
+        )
     x = anchor = np.log([getattr(g, n) for n in free])
     history: list[np.ndarray] = []
     converged = False
@@ -244,7 +247,7 @@ def identify(
         for _ in range(20):
             trial = x + step
             inside = np.all((trial >= lo) & (trial <= hi))
-            candidate = _on_grid(start, free, trial, grid_mm) if inside else None
+            candidate = _on_grid(start, free, trial, grid_decimals) if inside else None
             if candidate is not None:
                 g = candidate
                 x = np.log([getattr(g, n) for n in free])
@@ -270,13 +273,13 @@ def identify(
 
 
 def _on_grid(
-    start: HexFlexGeometry, free: list[str], logdims: np.ndarray, grid_mm: float
+    start: HexFlexGeometry, free: list[str], logdims: np.ndarray, decimals: int | None
 ) -> HexFlexGeometry | None:
-    """``start`` with the ``free`` dimensions exp(``logdims``) rounded to the grid, or None
-    if that geometry is invalid."""
+    """``start`` with the ``free`` dimensions exp(``logdims``) rounded to ``decimals``
+    decimals [mm], or None if that geometry is invalid."""
     dims = np.exp(logdims)
-    if grid_mm > 0:
-        dims = np.round(dims / grid_mm) * grid_mm
+    if decimals is not None:
+        dims = np.round(dims, decimals)
     try:
         return start.replace(**dict(zip(free, dims.tolist(), strict=True)))
     except ValueError:
