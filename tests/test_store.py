@@ -118,3 +118,35 @@ def test_a_sample_of_the_store_is_recomputed_cold_and_an_edit_is_named(built, tm
     off = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces, e.poses * 1.000001) for e in entries]
     (check,) = cc.check_entries(off, {"nonlinear": 1}, seed=7)
     assert not check.agrees and len(check.stored) == 6 and check.stored != check.fresh
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as c:
+        yield c
+
+
+def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_path, monkeypatch):
+    from mechlib.hexflex import executors
+
+    forces = np.vstack([FORCES, -FORCES])
+    with executors.dask_executor(cluster.scheduler_address) as pool:
+        got = ex.run_experiments(SPEC, forces, kind="nonlinear", executor=pool,
+                                 cache_dir=tmp_path / "cache", progress=False)  # fmt: skip
+    want = ex.run_experiments(SPEC, forces, kind="nonlinear", progress=False)
+    np.testing.assert_allclose(got, want, rtol=0, atol=cc.AGREE_RTOL * np.abs(want).max())
+    assert len(list((tmp_path / "cache").glob("*.npy"))) == 4
+    # $MECHLIB_DASK_SCHEDULER sends a notebook's campaign there, whatever its workers
+    monkeypatch.setenv(executors.DASK_ENV, cluster.scheduler_address)
+    with executors.executor(1) as pool:
+        assert type(pool).__name__ == "_DaskExecutor"
+
+
+def test_a_scheduler_that_does_not_answer_is_named() -> None:
+    from mechlib.hexflex import executors
+
+    with pytest.raises(RuntimeError, match=r"no Dask scheduler answers at tcp://127\.0\.0\.1:9"):
+        executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)
