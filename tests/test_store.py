@@ -150,3 +150,25 @@ def test_a_scheduler_that_does_not_answer_is_named() -> None:
 
     with pytest.raises(RuntimeError, match=r"no Dask scheduler answers at tcp://127\.0\.0\.1:9"):
         executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)
+
+
+def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp_path, capsys):
+    from mechlib.pipeline import storecmd
+
+    cache, log = built
+    folder = tmp_path / "store"
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
+    assert "no " in capsys.readouterr().out  # no store yet: every task is computed
+    args = ["--log", str(log), "--cache", str(cache), "--store", str(folder), "--seconds", "12"]
+    assert storecmd.main(["pack", *args]) == 0
+    manifest = st.read_manifest(folder)
+    assert manifest["seconds"] == 12 and manifest["processor"] and manifest["commit"]
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
+    assert "3 FE tasks" in capsys.readouterr().out
+    check = ["check", "--store", str(folder), "--nonlinear", "1", "--linear", "1", "--seed", "3"]
+    assert storecmd.main(check) == 0
+    assert "2 of 2 sampled tasks" in capsys.readouterr().out
+    (folder / st.MANIFEST).write_text("[]")
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "lacks fields" in err
