@@ -36,7 +36,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 unexport PYTHONDONTWRITEBYTECODE
 
 .PHONY: help env book test unit notebooks rerun check-records check-book check-browser run references lint \
-        bench lock clean
+        bench lock clean store store-seed store-check
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
@@ -51,6 +51,9 @@ help:
 	@echo "make pdf         print the built book to book/_build/pdf/book.pdf (headless Chromium; after make book)"
 	@echo "make check-pdf   check that PDF: page count, page titles, every figure, no raw TeX"
 	@echo "make lock        regenerate environment.lock from requirements.in"
+	@echo "make store       regenerate the FE results store (store/) from the notebooks' FE runs;"
+	@echo "                 resumes from build/cache; FROM_EMPTY=1: from an empty cache;"
+	@echo "                 DASK_SCHEDULER=tcp://host:port: the runs on that Dask cluster"
 
 # --- environment ------------------------------------------------------------------------------
 env: $(STAMP)
@@ -117,7 +120,9 @@ test: $(STAMP)
 	@# the unit tests beside the notebooks (they write only to temporary folders; the notebooks'
 	@# FE workers and the unit tests share the two cores); then the determinism re-run: every
 	@# notebook again into $(RERUN), its FE tasks read from a copy of the first run's cache
-	@# (a seeded sample of them is recomputed cold by the last step, `determinism`)
+	@# (a seeded sample of them is recomputed cold by the last step, `determinism`). The FE
+	@# results store seeds the cache first, and a sample of it is recomputed cold at the end.
+	$(MAKE) --no-print-directory store-seed
 	$(MAKE) --no-print-directory -j2 unit notebooks
 	$(MAKE) --no-print-directory check-records
 	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments
@@ -130,6 +135,32 @@ test: $(STAMP)
 	then $(MAKE) --no-print-directory pdf check-pdf; \
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
 	$(PIPELINE) determinism --records $(BUILD)/records --rerun $(RERUN)/records
+	$(MAKE) --no-print-directory store-check
+
+# --- the FE results store (store/) ----------------------------------------------------------------
+# The pose-level results of the notebooks' FE runs, computed once (`make store`) and kept in the
+# repository: `make test` seeds the build's FE cache from it (refusing a stale, edited or corrupt
+# store in one line) and recomputes a sample of it cold, seeded by the commit.
+STORE      := store
+STORE_LOG  := $(BUILD)/store-tasks.jsonl
+store-seed: $(STAMP)
+	$(PIPELINE) store seed --store $(STORE) --cache $(BUILD)/cache/experiments
+
+store-check: $(STAMP)
+	@if test -f $(STORE)/manifest.json; then $(PIPELINE) store check --store $(STORE); \
+	else echo "store-check skipped: no $(STORE)/manifest.json (make store)"; fi
+
+store: $(STAMP)
+	$(REQUIRE_CI)
+	$(if $(FROM_EMPTY),rm -rf $(BUILD)/cache/experiments)
+	rm -rf $(BUILD)/executed $(STORE_LOG)
+	@mkdir -p $(BUILD)
+	start=$$(date +%s); \
+	MECHLIB_FE_LOG=$(abspath $(STORE_LOG)) $(if $(DASK_SCHEDULER),MECHLIB_DASK_SCHEDULER=$(DASK_SCHEDULER)) \
+	  $(MAKE) --no-print-directory -j2 notebooks; \
+	$(PIPELINE) store pack --log $(STORE_LOG) --cache $(BUILD)/cache/experiments --store $(STORE) \
+	  --seconds $$(( $$(date +%s) - start )) \
+	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)"
 
 # every notebook executed again into $(RERUN), cold (an FE cache of its own) or, with
 # FE_CACHE_FROM=<folder>, from a copy of that FE cache: `make test` requires its records to be

@@ -44,6 +44,9 @@ class CacheCheck:
     identical: bool
     agrees: bool
     max_abs_diff: float
+    #: the row of the cached and of the recomputed poses where they differ most
+    stored: tuple[float, ...] = ()
+    fresh: tuple[float, ...] = ()
 
 
 def read_log(path: Path) -> list[dict]:
@@ -59,7 +62,8 @@ def read_log(path: Path) -> list[dict]:
     for line in Path(path).read_text().splitlines():
         if line.strip():
             entry = json.loads(line)
-            seen.setdefault(entry["file"], entry)
+            if entry.get("hit", True):  # a task computed by this run is no cached result
+                seen.setdefault(entry["file"], entry)
     return list(seen.values())
 
 
@@ -101,15 +105,54 @@ def check_sample(
         One per sampled task, grouped by model (each model is released before the next).
     """
     picked = sample(read_log(log), per_kind, seed)
+    tasks = [
+        (e["file"], e["spec"], e["kind"], np.array(e["forces"]), e["steps"],
+         np.load(Path(cache_dir) / e["file"]))
+        for e in picked
+    ]  # fmt: skip
+    return _recompute(tasks)
+
+
+def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[CacheCheck]:
+    """Recompute a seeded sample of results-store entries (:class:`mechlib.hexflex.store.Entry`)
+    and compare each with its stored poses.
+
+    Parameters
+    ----------
+    entries : list of Entry
+        The store's tasks.
+    per_kind : dict
+        Tasks to draw per kind (all of a kind if fewer).
+    seed : int
+        Seed of the draw (``make test`` takes it from the commit: each commit checks others).
+
+    Returns
+    -------
+    list of CacheCheck
+        One per sampled task.
+    """
+    logged = [{"file": f"{e.key}.npy", "kind": e.kind, "entry": e} for e in entries]
+    picked = [d["entry"] for d in sample(logged, per_kind, seed)]
+    return _recompute(
+        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.poses) for e in picked]
+    )
+
+
+def _recompute(tasks: list[tuple]) -> list[CacheCheck]:
+    """Each (file, spec text, kind, forces, steps, cached poses) task solved now and compared."""
     out: list[CacheCheck] = []
-    for key in dict.fromkeys(e["spec"] for e in picked):  # one model at a time (memory)
+    for key in dict.fromkeys(t[1] for t in tasks):  # one model at a time (memory)
         spec = spec_from_key(key)
-        for e in (e for e in picked if e["spec"] == key):
-            cached = np.load(Path(cache_dir) / e["file"])
-            fresh = task_poses(spec, e["kind"], np.array(e["forces"]), e["steps"])
+        for file, _, kind, forces, steps, cached in (t for t in tasks if t[1] == key):
+            fresh = task_poses(spec, kind, forces, steps)
             same = fresh.shape == cached.shape and np.array_equal(fresh, cached)
-            diff = float(np.max(np.abs(fresh - cached))) if fresh.shape == cached.shape else np.inf
-            agrees = diff <= AGREE_RTOL * float(np.abs(cached).max())
-            out.append(CacheCheck(e["file"], e["kind"], len(e["forces"]), same, agrees, diff))
+            if fresh.shape != cached.shape:
+                out.append(CacheCheck(file, kind, len(forces), False, False, np.inf))
+                continue
+            diff = np.abs(fresh - cached)
+            worst = int(np.argmax(diff.max(axis=1)))
+            agrees = float(diff.max()) <= AGREE_RTOL * float(np.abs(cached).max())
+            rows = (tuple(cached[worst, :6].tolist()), tuple(fresh[worst, :6].tolist()))
+            out.append(CacheCheck(file, kind, len(forces), same, agrees, float(diff.max()), *rows))
         release_models()
     return out

@@ -1,7 +1,10 @@
-"""Where FE experiments run: in-process, or on a pool of worker processes that share the cores.
+"""Where FE experiments run: in-process, on a pool of worker processes that share the cores, or
+on a Dask cluster.
 
 :func:`mechlib.hexflex.experiments.run_experiments` takes any
-:class:`concurrent.futures.Executor`; these are the two it is usually given.
+:class:`concurrent.futures.Executor`. :func:`executor` gives the one a notebook asked for: with
+``$MECHLIB_DASK_SCHEDULER`` set to a scheduler's address (``make store DASK_SCHEDULER=…``), every
+campaign goes to that cluster (:func:`dask_executor`), whatever its ``workers``.
 """
 
 from __future__ import annotations
@@ -10,7 +13,12 @@ import concurrent.futures as cf
 
 from mechlib.params import check_int
 
-__all__ = ["InProcessExecutor", "executor", "worker_pool"]
+__all__ = ["DASK_ENV", "InProcessExecutor", "dask_executor", "executor", "worker_pool"]
+
+#: environment variable holding a Dask scheduler's address (unset: local processes)
+DASK_ENV = "MECHLIB_DASK_SCHEDULER"
+#: seconds a scheduler may take to answer before :func:`dask_executor` gives up
+DASK_TIMEOUT_S = 10.0
 
 
 def _limit_blas(threads: int) -> None:
@@ -50,8 +58,61 @@ def executor(workers: int) -> cf.Executor:
     workers : int
         Worker processes, 1 .. 64.
     """
+    import os
+
     workers = check_int("workers", workers, low=1, high=64)
+    if os.environ.get(DASK_ENV):
+        return dask_executor(os.environ[DASK_ENV])
     return InProcessExecutor() if workers == 1 else worker_pool(workers)
+
+
+def dask_executor(address: object, timeout: float = DASK_TIMEOUT_S) -> cf.Executor:
+    """An executor on the Dask cluster whose scheduler is at ``address``.
+
+    ``distributed``'s ``Client(address).get_executor()``; shutting the executor down (leaving
+    its ``with`` block) closes the client, not the cluster. Dask workers run their BLAS on one
+    thread by default, as the non-linear solve does anyway.
+
+    Parameters
+    ----------
+    address : str or LocalCluster
+        The scheduler's address (``tcp://host:port``) or a cluster object.
+    timeout : float
+        Seconds the scheduler may take to answer, > 0.
+
+    Raises
+    ------
+    RuntimeError
+        If no scheduler answers at ``address`` within ``timeout``: one line, naming it and
+        what to do.
+    """
+    from distributed import Client
+
+    try:
+        client = Client(address, timeout=timeout)
+    except (OSError, TimeoutError) as err:
+        raise RuntimeError(
+            f"no Dask scheduler answers at {address} within {timeout:g} s: start one (`dask "
+            f"scheduler` and `dask worker <address>`) or unset {DASK_ENV} to run locally"
+        ) from err
+    return _DaskExecutor(client)
+
+
+class _DaskExecutor(cf.Executor):
+    """``client.get_executor()`` that closes its client on shutdown."""
+
+    def __init__(self, client) -> None:
+        self._client = client
+        self._inner = client.get_executor()
+
+    def submit(self, fn, /, *args, **kwargs):
+        """Submit ``fn(*args, **kwargs)`` to the cluster (a ``concurrent.futures.Future``)."""
+        return self._inner.submit(fn, *args, **kwargs)
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        """Wait for the submitted calls (if ``wait``) and close the client."""
+        self._inner.shutdown(wait=wait)
+        self._client.close()
 
 
 class InProcessExecutor(cf.Executor):

@@ -185,11 +185,18 @@ def model_code_fingerprint() -> str:
     return h.hexdigest()[:16]
 
 
-def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
+def task_key(spec: str, kind: str, forces: np.ndarray, steps: int, fingerprint: str) -> str:
+    """The cache key of a task: a digest of the cache format, the code ``fingerprint``
+    (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key` text), the
+    ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes."""
     h = hashlib.sha256()
-    h.update(f"{_CACHE_VERSION}|{model_code_fingerprint()}|{spec.key()}|{kind}|{steps}|".encode())
+    h.update(f"{_CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
     return h.hexdigest()[:32]
+
+
+def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
+    return task_key(spec.key(), kind, forces, steps, model_code_fingerprint())
 
 
 def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
@@ -222,12 +229,16 @@ def _cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None
     return res if res.shape == (n_rows, width) and np.all(np.isfinite(res)) else None
 
 
-def _log_hit(path: Path, spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> None:
-    """Append a cache hit to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file and the
-    task's inputs), so that :mod:`mechlib.hexflex.cachecheck` can recompute a sample cold."""
+def _log_task(
+    path: Path, spec: ModelSpec, kind: str, forces: np.ndarray, steps: int, hit: bool
+) -> None:
+    """Append a task to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file, the task's
+    inputs and whether it was read from the cache), so that :mod:`mechlib.hexflex.cachecheck`
+    can recompute a sample of the hits cold and :mod:`mechlib.hexflex.store` can collect every
+    task a build used."""
     log = fe_log_path()
     if log is not None:
-        entry = {"file": path.name, "spec": spec.key(), "kind": kind, "steps": steps}
+        entry = {"file": path.name, "spec": spec.key(), "kind": kind, "steps": steps, "hit": hit}
         with open(log, "a") as fh:
             fh.write(json.dumps({**entry, "forces": forces.tolist()}) + "\n")
 
@@ -309,11 +320,12 @@ def run_experiments(
         cached = _cached_result(path, len(rows), width) if path is not None else None
         if cached is not None:
             out[rows], done[rows] = cached, True
-            _log_hit(path, spec, kind, d[rows], steps)
+            _log_task(path, spec, kind, d[rows], steps, hit=True)
             continue
         fut = pool.submit(_task, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(_cache_result, path, len(rows)))
+            _log_task(path, spec, kind, d[rows], steps, hit=False)
         pending[fut] = rows
     failed: list[tuple[int, Exception]] = []
     bar = None

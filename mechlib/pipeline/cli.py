@@ -8,6 +8,7 @@ determinism    the re-run's records byte-identical to the first run's (or re-run
 update         ``make references``: a build's records to ``tests/references``, saying what changed
 book           the book's generated pages from the executed notebooks and their records
 check-browser  every built page in headless Chromium, network off
+store          the FE results store (``store/``): seed a build's cache, pack a build, check cold
 =============  ================================================================================
 """
 
@@ -19,7 +20,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from mechlib.paths import REPO_ROOT
-from mechlib.pipeline import bookbuild, runs
+from mechlib.pipeline import bookbuild, runs, storecmd
 from mechlib.pipeline.book import browser
 from mechlib.pipeline.execute import execute
 from mechlib.pipeline.references import update_references
@@ -100,6 +101,7 @@ DELEGATED: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "run": (runs.main, "one notebook with new parameters into build/runs (make run)"),
     "book": (bookbuild.main, "the book's generated pages from executed notebooks and records"),
     "check-browser": (browser.main, "every built page in headless Chromium, network off"),
+    "store": (storecmd.main, "the FE results store: seed a cache, pack a build, check cold"),
 }
 
 

@@ -1,0 +1,107 @@
+"""``python -m mechlib.pipeline store …``: the FE results store of the repository (``store/``).
+
+=======  ==========================================================================================
+seed     write the store's tasks into a build's FE cache (refuses a stale, edited or corrupt store)
+pack     collect every FE task a build logged into the store, with its provenance (``make store``)
+check    recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
+=======  ==========================================================================================
+
+Each refusal is one line naming the thing and what to do, with exit code 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as dt
+import platform
+import sys
+from pathlib import Path
+
+from mechlib.hexflex import store
+from mechlib.pipeline.provenance import commit, cpu_model
+
+#: non-linear and linear tasks of the store that ``make test`` recomputes cold
+COLD_NONLINEAR, COLD_LINEAR = 30, 2
+
+
+def _seed(args: argparse.Namespace) -> int:
+    if not (args.store / store.MANIFEST).exists():
+        print(f"store: no {args.store / store.MANIFEST}: every FE task is computed (`make store`)")
+        return 0
+    n = store.seed_cache(args.store, args.cache)
+    print(f"store: {n} FE tasks of {args.store} verified (checksum, keys) and written to the cache")
+    return 0
+
+
+def _pack(args: argparse.Namespace) -> int:
+    entries = store.entries_from_cache(args.log, args.cache)
+    provenance = {
+        "commit": commit(),
+        "date": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
+        "processor": cpu_model(),
+        "python": platform.python_version(),
+        "seconds": args.seconds,
+        "workers": args.workers,
+    }
+    folder = store.write_store(entries, args.store, provenance)
+    m = store.read_manifest(folder)
+    print(f"store: {len(entries)} FE tasks ({m['runs']}) written to {folder}")
+    return 0
+
+
+def _check(args: argparse.Namespace) -> int:
+    from mechlib.hexflex.cachecheck import AGREE_RTOL, check_entries
+
+    _, entries = store.read_store(args.store)
+    seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed
+    checks = check_entries(entries, {"nonlinear": args.nonlinear, "linear": args.linear}, seed)
+    for c in checks:
+        verdict = "agrees" if c.agrees else "DIFFERS"
+        print(
+            f"  store {c.kind} task {c.file} ({c.rows} run(s)) recomputed cold: {verdict} "
+            f"(largest difference {c.max_abs_diff:.3g}; stored {c.stored}, recomputed {c.fresh})"
+            if not c.agrees
+            else f"  store {c.kind} task {c.file} ({c.rows} run(s)) recomputed cold: {verdict}"
+            f" (largest difference {c.max_abs_diff:.3g})"
+        )
+    bad = [c for c in checks if not c.agrees]
+    print(
+        f"store: {len(checks) - len(bad)} of {len(checks)} sampled tasks (seed {seed}, of "
+        f"{len(entries)} stored) recomputed cold agree within {AGREE_RTOL:g} of each task's "
+        f"largest pose component"
+    )
+    return 1 if bad else 0
+
+
+def parser() -> argparse.ArgumentParser:
+    """The ``store`` command's arguments."""
+    top = argparse.ArgumentParser(prog="python -m mechlib.pipeline store")
+    sub = top.add_subparsers(dest="cmd", required=True)
+    seed = sub.add_parser("seed", help="the store's tasks into an FE cache")
+    seed.add_argument("--store", type=Path, required=True)
+    seed.add_argument("--cache", type=Path, required=True)
+    seed.set_defaults(func=_seed)
+    pack = sub.add_parser("pack", help="a build's logged FE tasks into the store")
+    pack.add_argument("--log", type=Path, required=True)
+    pack.add_argument("--cache", type=Path, required=True)
+    pack.add_argument("--store", type=Path, required=True)
+    pack.add_argument("--seconds", type=float, default=None, help="wall time of the build")
+    pack.add_argument("--workers", type=str, default=None, help="where it ran")
+    pack.set_defaults(func=_pack)
+    check = sub.add_parser("check", help="a seeded sample of the store recomputed cold")
+    check.add_argument("--store", type=Path, required=True)
+    check.add_argument("--nonlinear", type=int, default=COLD_NONLINEAR)
+    check.add_argument("--linear", type=int, default=COLD_LINEAR)
+    check.add_argument("--seed", type=int, default=None, help="default: from the commit")
+    check.set_defaults(func=_check)
+    return top
+
+
+def main(argv: list[str]) -> int:
+    """Run one ``store`` command; its exit code (2: the store was refused, with one line)."""
+    args = parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except store.StoreError as err:
+        print(f"store: {err}", file=sys.stderr)
+        return 2

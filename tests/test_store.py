@@ -1,0 +1,174 @@
+"""The FE results store: packed from a build's task log, verified, seeded into a cache, refused
+by name when stale, edited or corrupt, and sampled cold."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
+
+from mechlib.hexflex import cachecheck as cc
+from mechlib.hexflex import experiments as ex
+from mechlib.hexflex import store as st
+from mechlib.paths import FE_LOG_ENV
+
+SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+FORCES = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3], [-0.2, 0.1, 0.4, -0.3, 0.2, 0.1]])
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """A build's FE cache and task log: two non-linear runs and a linear block, all computed."""
+    tmp = tmp_path_factory.mktemp("build")
+    cache, log = tmp / "cache", tmp / "tasks.jsonl"
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv(FE_LOG_ENV, str(log))
+        ex.run_experiments(SPEC, FORCES, kind="nonlinear", cache_dir=cache, progress=False)
+        ex.run_experiments(SPEC, FORCES, kind="linear", cache_dir=cache, progress=False)
+    return cache, log
+
+
+def test_every_task_a_build_runs_is_logged_and_packed(built, tmp_path) -> None:
+    cache, log = built
+    lines = [json.loads(x) for x in log.read_text().splitlines()]
+    assert [x["hit"] for x in lines] == [False, False, False]  # computed, not read
+    assert cc.read_log(log) == []  # the determinism sample reads hits only
+    entries = st.entries_from_cache(log, cache)
+    assert [e.kind for e in entries] == ["nonlinear", "nonlinear", "linear"]
+    folder = st.write_store(entries, tmp_path / "store", {"commit": "abc"})
+    manifest, back = st.read_store(folder)
+    assert manifest["entries"] == {"linear": 1, "nonlinear": 2}
+    assert manifest["runs"] == {"linear": 2, "nonlinear": 2} and manifest["commit"] == "abc"
+    for a, b in zip(entries, back, strict=True):
+        assert (a.key, a.spec, a.kind, a.steps) == (b.key, b.spec, b.kind, b.steps)
+        np.testing.assert_array_equal(a.forces, b.forces)
+        np.testing.assert_array_equal(a.poses, b.poses)  # bit for bit through the file
+    assert (folder / st.RESULTS).stat().st_size < 10_000
+
+
+def test_a_seeded_cache_serves_the_build_without_a_solve(built, tmp_path, monkeypatch) -> None:
+    cache, log = built
+    folder = st.write_store(st.entries_from_cache(log, cache), tmp_path / "store")
+    fresh = tmp_path / "fresh-cache"
+    assert st.seed_cache(folder, fresh) == 3
+    monkeypatch.setattr(ex, "_task", lambda *a: pytest.fail("solved instead of read"))
+    got = ex.run_experiments(SPEC, FORCES, kind="nonlinear", cache_dir=fresh, progress=False)
+    want = ex.run_experiments(SPEC, FORCES, kind="nonlinear", cache_dir=cache, progress=False)
+    np.testing.assert_array_equal(got, want)
+
+
+def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path, monkeypatch):
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    folder = st.write_store(entries, tmp_path / "store")
+    # other FE code: the fingerprint differs
+    monkeypatch.setattr(st, "model_code_fingerprint", lambda: "0123456789abcdef")
+    with pytest.raises(st.StoreError, match=r"3 entries .* other FE code .*`make store`"):
+        st.seed_cache(folder, tmp_path / "c1")
+    monkeypatch.undo()
+    # an edited force: the entry's key is no longer its inputs' digest
+    bad = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces * 1.01, e.poses) for e in entries]
+    with pytest.raises(st.StoreError, match=rf"entry {entries[0].key} does not match its own"):
+        st.read_store(st.write_store(bad, tmp_path / "edited"))
+    # a changed byte of results.npz: the checksum
+    raw = bytearray((folder / st.RESULTS).read_bytes())
+    raw[-30] ^= 0xFF
+    (folder / st.RESULTS).write_bytes(bytes(raw))
+    with pytest.raises(st.StoreError, match="does not match the checksum"):
+        st.read_store(folder)
+    # a malformed manifest, an unknown version, no store
+    m = json.loads((folder / st.MANIFEST).read_text())
+    (folder / st.MANIFEST).write_text(json.dumps({**m, "version": 99}))
+    with pytest.raises(st.StoreError, match="format version 99; this code reads version 1"):
+        st.read_store(folder)
+    (folder / st.MANIFEST).write_text("{not json")
+    with pytest.raises(st.StoreError, match="not valid JSON"):
+        st.read_manifest(folder)
+    (folder / st.MANIFEST).write_text(json.dumps({"version": 1}))
+    with pytest.raises(st.StoreError, match="lacks fields"):
+        st.read_manifest(folder)
+    with pytest.raises(st.StoreError, match="no store manifest"):
+        st.read_manifest(tmp_path / "nowhere")
+
+
+def test_a_failed_write_leaves_the_old_store_whole(built, tmp_path, monkeypatch) -> None:
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    folder = st.write_store(entries, tmp_path / "store")
+    before = (folder / st.MANIFEST).read_text()
+
+    def full(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(st.np, "savez_compressed", full)
+    with pytest.raises(OSError, match="disk full"):
+        st.write_store(entries[:1], folder)
+    assert (folder / st.MANIFEST).read_text() == before
+    assert st.read_store(folder)[0]["entries"]["nonlinear"] == 2
+
+
+def test_a_sample_of_the_store_is_recomputed_cold_and_an_edit_is_named(built, tmp_path) -> None:
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    checks = cc.check_entries(entries, {"nonlinear": 1, "linear": 1}, seed=7)
+    assert sorted(c.kind for c in checks) == ["linear", "nonlinear"]
+    assert all(c.agrees for c in checks)
+    off = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces, e.poses * 1.000001) for e in entries]
+    (check,) = cc.check_entries(off, {"nonlinear": 1}, seed=7)
+    assert not check.agrees and len(check.stored) == 6 and check.stored != check.fresh
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as c:
+        yield c
+
+
+def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_path, monkeypatch):
+    from mechlib.hexflex import executors
+
+    forces = np.vstack([FORCES, -FORCES])
+    with executors.dask_executor(cluster.scheduler_address) as pool:
+        got = ex.run_experiments(SPEC, forces, kind="nonlinear", executor=pool,
+                                 cache_dir=tmp_path / "cache", progress=False)  # fmt: skip
+    want = ex.run_experiments(SPEC, forces, kind="nonlinear", progress=False)
+    np.testing.assert_allclose(got, want, rtol=0, atol=cc.AGREE_RTOL * np.abs(want).max())
+    assert len(list((tmp_path / "cache").glob("*.npy"))) == 4
+    # $MECHLIB_DASK_SCHEDULER sends a notebook's campaign there, whatever its workers
+    monkeypatch.setenv(executors.DASK_ENV, cluster.scheduler_address)
+    with executors.executor(1) as pool:
+        assert type(pool).__name__ == "_DaskExecutor"
+
+
+def test_a_scheduler_that_does_not_answer_is_named() -> None:
+    from mechlib.hexflex import executors
+
+    with pytest.raises(RuntimeError, match=r"no Dask scheduler answers at tcp://127\.0\.0\.1:9"):
+        executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)
+
+
+def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp_path, capsys):
+    from mechlib.pipeline import storecmd
+
+    cache, log = built
+    folder = tmp_path / "store"
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
+    assert "no " in capsys.readouterr().out  # no store yet: every task is computed
+    args = ["--log", str(log), "--cache", str(cache), "--store", str(folder), "--seconds", "12"]
+    assert storecmd.main(["pack", *args]) == 0
+    manifest = st.read_manifest(folder)
+    assert manifest["seconds"] == 12 and manifest["processor"] and manifest["commit"]
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
+    assert "3 FE tasks" in capsys.readouterr().out
+    check = ["check", "--store", str(folder), "--nonlinear", "1", "--linear", "1", "--seed", "3"]
+    assert storecmd.main(check) == 0
+    assert "2 of 2 sampled tasks" in capsys.readouterr().out
+    (folder / st.MANIFEST).write_text("[]")
+    assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.count("\n") == 0 and "lacks fields" in err
