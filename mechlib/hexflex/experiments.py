@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import functools
-import hashlib
 import json
 from dataclasses import asdict, dataclass, replace
 from functools import lru_cache
@@ -35,9 +34,14 @@ from mechlib.hexflex.model import (
 )
 from mechlib.hexflex.nonlinear import NonlinearSolver
 from mechlib.hexflex.problem import QUAD_ORDER
-from mechlib.hexflex.sources import model_modules
+from mechlib.hexflex.taskcache import (
+    cache_result,
+    cached_result,
+    log_task,
+    model_code_fingerprint,
+    task_key,
+)
 from mechlib.params import check_choice, check_int
-from mechlib.paths import fe_log_path
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.finite_pose`): the
@@ -49,7 +53,6 @@ POSE_CONVENTIONS: tuple[str, ...] = CONVENTIONS
 _WIDTH = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
-_CACHE_VERSION = 2  # 2: a non-linear task stores its poses in the three conventions
 
 
 @dataclass(frozen=True)
@@ -168,79 +171,8 @@ def task_poses(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np
     return _task(spec, kind, np.asarray(forces, dtype=float), steps)
 
 
-@lru_cache(maxsize=1)
-def model_code_fingerprint() -> str:
-    """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
-    mesh, FE model, solver, pose fit …).
-
-    Part of every cache key, so that a change to the mesher or the solver can never return
-    results computed by the old code.
-    """
-    import importlib.util
-
-    h = hashlib.sha256()
-    for name in model_modules():
-        h.update(name.encode())
-        h.update(Path(importlib.util.find_spec(name).origin).read_bytes())
-    return h.hexdigest()[:16]
-
-
-def task_key(spec: str, kind: str, forces: np.ndarray, steps: int, fingerprint: str) -> str:
-    """The cache key of a task: a digest of the cache format, the code ``fingerprint``
-    (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key` text), the
-    ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes."""
-    h = hashlib.sha256()
-    h.update(f"{_CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
-    h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
-    return h.hexdigest()[:32]
-
-
 def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
     return task_key(spec.key(), kind, forces, steps, model_code_fingerprint())
-
-
-def _cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
-    """Save a finished task's poses (n_rows, columns) to ``path``; a failed task saves nothing.
-
-    Written to a temporary file and renamed, so a reader never sees a partial file (the
-    done-callback and the collecting loop may both write it: same content, atomic rename).
-    """
-    import os
-    import tempfile
-
-    if fut.cancelled() or fut.exception() is not None:
-        return
-    res = np.asarray(fut.result(), dtype=float).reshape(n_rows, -1)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
-    with os.fdopen(fd, "wb") as fh:
-        np.save(fh, res)
-    os.replace(tmp, path)
-
-
-def _cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None:
-    """The cached poses (n_rows, width) at ``path``, or ``None`` if absent or unreadable (then
-    the task runs again)."""
-    if not path.exists():
-        return None
-    try:
-        res = np.load(path)
-    except (OSError, ValueError, EOFError):
-        return None
-    return res if res.shape == (n_rows, width) and np.all(np.isfinite(res)) else None
-
-
-def _log_task(
-    path: Path, spec: ModelSpec, kind: str, forces: np.ndarray, steps: int, hit: bool
-) -> None:
-    """Append a task to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file, the task's
-    inputs and whether it was read from the cache), so that :mod:`mechlib.hexflex.cachecheck`
-    can recompute a sample of the hits cold and :mod:`mechlib.hexflex.store` can collect every
-    task a build used."""
-    log = fe_log_path()
-    if log is not None:
-        entry = {"file": path.name, "spec": spec.key(), "kind": kind, "steps": steps, "hit": hit}
-        with open(log, "a") as fh:
-            fh.write(json.dumps({**entry, "forces": forces.tolist()}) + "\n")
 
 
 def check_forces_design(design: object) -> np.ndarray:
@@ -317,15 +249,15 @@ def run_experiments(
     pool = executor if executor is not None else InProcessExecutor()
     for rows in chunks:
         path = cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy" if cache_dir else None
-        cached = _cached_result(path, len(rows), width) if path is not None else None
+        cached = cached_result(path, len(rows), width) if path is not None else None
         if cached is not None:
             out[rows], done[rows] = cached, True
-            _log_task(path, spec, kind, d[rows], steps, hit=True)
+            log_task(path, spec.key(), kind, d[rows], steps, hit=True)
             continue
         fut = pool.submit(_task, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
-            fut.add_done_callback(functools.partial(_cache_result, path, len(rows)))
-            _log_task(path, spec, kind, d[rows], steps, hit=False)
+            fut.add_done_callback(functools.partial(cache_result, path, len(rows)))
+            log_task(path, spec.key(), kind, d[rows], steps, hit=False)
         pending[fut] = rows
     failed: list[tuple[int, Exception]] = []
     bar = None
@@ -343,7 +275,7 @@ def run_experiments(
         else:
             out[rows], done[rows] = res, True
             if cache_dir is not None:  # the callback may not have run yet (pool threads)
-                _cache_result(
+                cache_result(
                     cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", len(rows), fut
                 )
         if bar is not None:

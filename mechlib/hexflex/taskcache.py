@@ -1,0 +1,92 @@
+"""The FE cache's files: task keys, the code fingerprint in them, atomic writes, the task log.
+
+:func:`mechlib.hexflex.experiments.run_experiments` caches each finished task as
+``<key>.npy`` (its poses) under a key made of the cache format, the fingerprint of the sources
+that define a result, the model specification, the kind, the load steps and the forces; the
+results store (:mod:`mechlib.hexflex.store`) and the cold checks
+(:mod:`mechlib.hexflex.cachecheck`) recompute the same keys.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import hashlib
+import json
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from mechlib.hexflex.sources import model_modules
+from mechlib.paths import fe_log_path
+
+CACHE_VERSION = 2  # 2: a non-linear task stores its poses in the three conventions
+
+
+@lru_cache(maxsize=1)
+def model_code_fingerprint() -> str:
+    """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
+    mesh, FE model, solver, pose fit …).
+
+    Part of every cache key, so that a change to the mesher or the solver can never return
+    results computed by the old code.
+    """
+    import importlib.util
+
+    h = hashlib.sha256()
+    for name in model_modules():
+        h.update(name.encode())
+        h.update(Path(importlib.util.find_spec(name).origin).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def task_key(spec: str, kind: str, forces: np.ndarray, steps: int, fingerprint: str) -> str:
+    """The cache key of a task: a digest of the cache format, the code ``fingerprint``
+    (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key` text), the
+    ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes."""
+    h = hashlib.sha256()
+    h.update(f"{CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
+    h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
+    return h.hexdigest()[:32]
+
+
+def cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:
+    """Save a finished task's poses (n_rows, columns) to ``path``; a failed task saves nothing.
+
+    Written to a temporary file and renamed, so a reader never sees a partial file (the
+    done-callback and the collecting loop may both write it: same content, atomic rename).
+    """
+    import os
+    import tempfile
+
+    if fut.cancelled() or fut.exception() is not None:
+        return
+    res = np.asarray(fut.result(), dtype=float).reshape(n_rows, -1)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
+    with os.fdopen(fd, "wb") as fh:
+        np.save(fh, res)
+    os.replace(tmp, path)
+
+
+def cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None:
+    """The cached poses (n_rows, width) at ``path``, or ``None`` if absent or unreadable (then
+    the task runs again)."""
+    if not path.exists():
+        return None
+    try:
+        res = np.load(path)
+    except (OSError, ValueError, EOFError):
+        return None
+    return res if res.shape == (n_rows, width) and np.all(np.isfinite(res)) else None
+
+
+def log_task(path: Path, spec: str, kind: str, forces: np.ndarray, steps: int, hit: bool) -> None:
+    """Append a task to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file, the task's
+    inputs and whether it was read from the cache), so that :mod:`mechlib.hexflex.cachecheck`
+    can recompute a sample of the hits cold and :mod:`mechlib.hexflex.store` can collect every
+    task a build used."""
+    log = fe_log_path()
+    if log is not None:
+        entry = {"file": path.name, "spec": spec, "kind": kind, "steps": steps, "hit": hit}
+        with open(log, "a") as fh:
+            fh.write(json.dumps({**entry, "forces": forces.tolist()}) + "\n")
