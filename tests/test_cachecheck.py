@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import cachecheck as cc
-from mechlib.hexflex import experiments as ex
+from mechlib.hexflex.campaign import cachecheck as cc
+from mechlib.hexflex.campaign import experiments as ex
 from mechlib.paths import FE_LOG_ENV
 
 SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)

@@ -1,7 +1,7 @@
 """The non-linear solver on problems with known answers: the elastica cantilever and rigid motion.
 
 The FE side goes through the HexFlex's own code path (``NonlinearSolver`` with ``SVKTangent``
-and CHOLMOD) on :class:`mechlib.hexflex.cantilever.Cantilever`.
+and CHOLMOD) on :class:`mechlib.hexflex.studies.cantilever.Cantilever`.
 """
 
 import math
@@ -10,15 +10,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from mechlib.hexflex.cantilever import (
+from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+from mechlib.hexflex.fe.svk_tangent import SVKTangent
+from mechlib.hexflex.studies.cantilever import (
     ELASTICA_TOL,
     MAX_ALPHA,
     Cantilever,
     box_hexahedra,
     elastica_tip,
 )
-from mechlib.hexflex.nonlinear import NonlinearSolver
-from mechlib.hexflex.svk_tangent import SVKTangent
 
 #: Mattiasson (1981), "Numerical results from large deflection beam and frame problems analysed
 #: by means of elliptic integrals", Int. J. Numer. Meth. Eng. 17(1) 145–153, the cantilever under

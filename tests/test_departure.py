@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from mechlib.hexflex.departure import parity_split, parity_summary
+from mechlib.hexflex.studies.departure import parity_split, parity_summary
 
 
 def _response(f: np.ndarray) -> np.ndarray:
@@ -40,7 +40,7 @@ def test_parity_split_refuses_mismatched_shapes():
 
 
 def test_relative_change_is_per_column_and_refuses_a_zero_reference():
-    from mechlib.hexflex.departure import relative_change
+    from mechlib.hexflex.studies.departure import relative_change
 
     ref = np.array([[1.0, -2.0], [0.5, 4.0]])
     out = relative_change(ref + np.array([[0.01, 0.0], [0.0, -0.2]]), ref)
@@ -52,9 +52,9 @@ def test_relative_change_is_per_column_and_refuses_a_zero_reference():
 def test_linear_poses_at_the_models_quadrature_are_the_linear_models():
     from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-    from mechlib.hexflex.departure import linear_poses
-    from mechlib.hexflex.model import HexFlexModel
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.fe.model import HexFlexModel
+    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+    from mechlib.hexflex.studies.departure import linear_poses
 
     model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)
     forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.5, -0.4]])
@@ -70,8 +70,8 @@ def test_linear_poses_at_the_models_quadrature_are_the_linear_models():
 def test_linear_poses_for_a_spec_uses_the_processs_model_and_solver():
     from test_hexflex import SMALL
 
-    from mechlib.hexflex import experiments as ex
-    from mechlib.hexflex.departure import linear_poses, linear_poses_for
+    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.hexflex.studies.departure import linear_poses, linear_poses_for
 
     forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.5, -0.4], [-0.1, 0.6, 0.0, 0.2, -0.3, 0.1]])
     ex.release_models()

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import executors, linearity
-from mechlib.hexflex import experiments as ex
-from mechlib.hexflex.nonlinear import ConvergenceError
-from mechlib.hexflex.sources import model_modules
+from mechlib.hexflex.campaign import executors
+from mechlib.hexflex.campaign import experiments as ex
+from mechlib.hexflex.campaign.sources import model_modules
+from mechlib.hexflex.fe.nonlinear import ConvergenceError
+from mechlib.hexflex.studies import linearity
 
 SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
 
@@ -55,7 +56,7 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
 
     # every mechlib module that a task's code loads (run one: imports inside functions too)
     code = (
-        "import sys, numpy as np; from mechlib.hexflex import experiments as ex; "
+        "import sys, numpy as np; from mechlib.hexflex.campaign import experiments as ex; "
         "from mechlib.hexflex.geometry import HexFlexGeometry; "
         f"spec = ex.ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
         "mesh_size=1.0); "
@@ -69,16 +70,18 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
     )
     # the runner, where it runs tasks, its cache key and its cache's folders define no result
     runner = {
-        "mechlib.hexflex.experiments",
-        "mechlib.hexflex.executors",
-        "mechlib.hexflex.sources",
-        "mechlib.hexflex.taskcache",
+        "mechlib.hexflex.campaign",
+        "mechlib.hexflex.campaign.experiments",
+        "mechlib.hexflex.campaign.executors",
+        "mechlib.hexflex.campaign.sources",
+        "mechlib.hexflex.campaign.taskcache",
         "mechlib.paths",
     }
     loaded = set(out.stdout.split()) - runner
     keyed = set(model_modules())
-    assert {"mechlib.hexflex.factor", "mechlib.hexflex.svk_tangent"} <= keyed
-    assert "mechlib.hexflex.experiments" not in keyed  # the runner's own code defines no result
+    assert {"mechlib.hexflex.fe.factor", "mechlib.hexflex.fe.svk_tangent"} <= keyed
+    # the runner's own code defines no result
+    assert "mechlib.hexflex.campaign.experiments" not in keyed
     assert loaded <= keyed, sorted(loaded - keyed)
 
 
@@ -310,7 +313,7 @@ def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -
 
 
 def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
-    from mechlib.hexflex.finite_pose import finite_poses
+    from mechlib.hexflex.fe.finite_pose import finite_poses
 
     spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
     d = np.array([[0.3, -0.5, 0.2, 1.0, -0.7, 0.1]]) * 3.0

@@ -5,9 +5,9 @@ import pytest
 import scipy.sparse as sp
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import nonlinear
-from mechlib.hexflex.factor import PatternCholesky
-from mechlib.hexflex.model import HexFlexModel
+from mechlib.hexflex.fe import nonlinear
+from mechlib.hexflex.fe.factor import PatternCholesky
+from mechlib.hexflex.fe.model import HexFlexModel
 
 
 def _spd(n: int = 300, seed: int = 0, shift: float = 1.0) -> sp.csr_array:

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from mechlib import published as pub
-from mechlib.hexflex import family
 from mechlib.hexflex import identify as ident
 from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.studies import family
 
 REFS = Path(__file__).parent / "references" / "hexflex_model.json"
 

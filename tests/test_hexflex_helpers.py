@@ -4,8 +4,9 @@ geometry → compliance makers of the identification."""
 import numpy as np
 import pytest
 
-from mechlib.hexflex import checks, frame, model
+from mechlib.hexflex import checks, frame
 from mechlib.hexflex import geometry as geo
+from mechlib.hexflex.fe import model
 from mechlib.hexflex.geometry import TAB_ANGLES_DEG
 
 

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from mechlib import published as pub
-from mechlib.hexflex import family
 from mechlib.hexflex import frame as fr
 from mechlib.hexflex import identify as ident
 from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.studies import family
 
 TARGET = ident.target_values(pub.EQ8_ST)
 START = HexFlexGeometry(

@@ -13,8 +13,8 @@ from matplotlib.figure import Figure
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib import surrogates
-from mechlib.hexflex import experiments as ex
-from mechlib.hexflex import snapshots
+from mechlib.hexflex.campaign import experiments as ex
+from mechlib.hexflex.rom import snapshots
 from mechlib.plotting import metamodels as mmplot
 
 

@@ -20,7 +20,7 @@ from mechlib import published as pub
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import workspace as ws
 from mechlib.hexflex import geometry as geo
-from mechlib.hexflex.mesh import PlanarMesh
+from mechlib.hexflex.fe.mesh import PlanarMesh
 
 RNG = np.random.default_rng(0)
 F, R = list(pub.FACTORS), ["x", "y", "z", "θx", "θy", "θz"]

@@ -1,14 +1,15 @@
-"""The hyper-reduced ROM of the non-linear HexFlex (mechlib.hexflex.rom), on a small Q2 model."""
+"""The hyper-reduced ROM of the non-linear HexFlex (mechlib.hexflex.rom.model), on a small Q2
+model."""
 
 import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import ecsw
-from mechlib.hexflex import rom as rm
-from mechlib.hexflex import rom_basis as rb
-from mechlib.hexflex.model import HexFlexModel
-from mechlib.hexflex.nonlinear import NonlinearSolver
+from mechlib.hexflex.fe.model import HexFlexModel
+from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+from mechlib.hexflex.rom import basis as rb
+from mechlib.hexflex.rom import ecsw
+from mechlib.hexflex.rom import model as rm
 
 #: The ROMs' force range [N]: the small model departs from linear by ≈ 7 % of a pose
 #: component's range at 10 N (≈ 0.1 % at 1 N), so 10 N exercises the non-linearity.

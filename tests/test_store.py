@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex import cachecheck as cc
-from mechlib.hexflex import experiments as ex
-from mechlib.hexflex import store as st
+from mechlib.hexflex.campaign import cachecheck as cc
+from mechlib.hexflex.campaign import experiments as ex
+from mechlib.hexflex.campaign import store as st
 from mechlib.paths import FE_LOG_ENV
 
 SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
@@ -130,7 +130,7 @@ def cluster():
 
 
 def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_path, monkeypatch):
-    from mechlib.hexflex import executors
+    from mechlib.hexflex.campaign import executors
 
     forces = np.vstack([FORCES, -FORCES])
     with executors.dask_executor(cluster.scheduler_address) as pool:
@@ -146,7 +146,7 @@ def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_pa
 
 
 def test_a_scheduler_that_does_not_answer_is_named() -> None:
-    from mechlib.hexflex import executors
+    from mechlib.hexflex.campaign import executors
 
     with pytest.raises(RuntimeError, match=r"no Dask scheduler answers at tcp://127\.0\.0\.1:9"):
         executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)

@@ -11,9 +11,9 @@
   pivoting that the model uses, against SciPy's default column ordering (COLAMD).
 - The non-linear solve (issue 18's options, :mod:`mechlib.bench.nonlinear`), on the first
   validation runs of the DOE chapter's model: Newton with SfePy's tangent and SuperLU (the solver
-  before issue 18), Newton with the batched-BLAS tangent (:mod:`mechlib.hexflex.svk_tangent`),
+  before issue 18), Newton with the batched-BLAS tangent (:mod:`mechlib.hexflex.fe.svk_tangent`),
   modified Newton with SuperLU and modified Newton with CHOLMOD's Cholesky (the default,
-  :mod:`mechlib.hexflex.factor`), each timed on the same runs, with the largest relative pose
+  :mod:`mechlib.hexflex.fe.factor`), each timed on the same runs, with the largest relative pose
   difference to the first; the cost of one tangent (SfePy's, batched), one factorisation (LU,
   Cholesky), one residual and one back-substitution; and the Newton–Krylov alternative: GMRES
   iterations, preconditioned by the factorised linear stiffness (a whole solve on the first run:
@@ -83,7 +83,7 @@ def posture_selection() -> dict[str, float]:
 
 def hexflex_load_cases() -> dict[str, float]:
     """Time 1042 load cases on a representative HexFlex geometry (Q2, default mesh)."""
-    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.fe.model import HexFlexModel
 
     g = bench_geometry()
     forces = np.random.default_rng(2010).uniform(-1.0, 1.0, (N_LOAD_CASES, 6))
@@ -114,8 +114,8 @@ def factorisation_orderings() -> dict[str, float]:
     """Time SuperLU with the model's ordering and with SciPy's default on one stiffness."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.factor import factorise
-    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.fe.factor import factorise
+    from mechlib.hexflex.fe.model import HexFlexModel
 
     matrix = HexFlexModel(bench_geometry()).assembled_stiffness().tocsc()
     t0 = time.perf_counter()
@@ -149,7 +149,7 @@ def main(argv: list[str] | None = None) -> int:
     import argparse
 
     from mechlib.bench import nonlinear as nlb
-    from mechlib.hexflex.nonlinear import NEWTON_TOL
+    from mechlib.hexflex.fe.nonlinear import NEWTON_TOL
 
     parser = argparse.ArgumentParser(prog="python -m mechlib.bench", description=__doc__)
     parser.add_argument(

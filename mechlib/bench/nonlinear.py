@@ -41,8 +41,8 @@ def _fastest(call) -> float:
 def nonlinear_options() -> dict[str, float]:
     """Time the non-linear solvers on the same validation runs, and their building blocks."""
 
-    from mechlib.hexflex.factor import PatternCholesky, factorise
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.fe.factor import PatternCholesky, factorise
+    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 
     spec, _ = _chapter_spec()
     model = spec.build()
@@ -125,7 +125,7 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
     GMRES iterations) and ``residual`` (final relative residual)."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.nonlinear import NEWTON_TOL
+    from mechlib.hexflex.fe.nonlinear import NEWTON_TOL
 
     model = solver.model
     load = model.load_vectors() @ forces
@@ -166,7 +166,7 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
 
 def _warm_worker(spec) -> int:
     """Build a worker's model and non-linear solver (what its first run would pay)."""
-    from mechlib.hexflex.experiments import solver_for
+    from mechlib.hexflex.campaign.experiments import solver_for
 
     return solver_for(spec).model.n_dofs
 
@@ -175,9 +175,9 @@ def _chapter_spec():
     """The FE model of the DOE chapter: the geometry and mesh the hexflex notebook identified
     when the build holds its record (the chapter inputs the build wing passes), else the bench
     geometry at the default mesh (the second item says which)."""
-    from mechlib.hexflex import experiments as ex
+    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.hexflex.fe.model import DEFAULT_MESH_FRACTION
     from mechlib.hexflex.geometry import HexFlexGeometry
-    from mechlib.hexflex.model import DEFAULT_MESH_FRACTION
     from mechlib.paths import records_dir
     from mechlib.pipeline.execute import chapter_inputs
 
@@ -214,8 +214,8 @@ def nonlinear_run_counts() -> dict[str, int]:
 
 def chapter_timings() -> dict[str, float | str]:
     """Cold wall times of the DOE chapter's FE work (no cache), measured and projected."""
-    from mechlib.hexflex import executors
-    from mechlib.hexflex import experiments as ex
+    from mechlib.hexflex.campaign import executors
+    from mechlib.hexflex.campaign import experiments as ex
 
     counts = nonlinear_run_counts()
 

@@ -2,8 +2,8 @@
 
 On the DOE chapter's model (:func:`mechlib.bench.nonlinear._chapter_spec`): the full non-linear
 runs of the thesis's designs, Table 2 (12 runs) and Table 4 (30), are the ROM's snapshots
-(:mod:`mechlib.hexflex.rom`; ``N_POD`` energy-POD vectors of them join the static modes and modal
-derivatives); the ROM is built; then the first ``N_CHECK`` validation runs of the chapter
+(:mod:`mechlib.hexflex.rom.model`; ``N_POD`` energy-POD vectors of them join the static modes and
+modal derivatives); the ROM is built; then the first ``N_CHECK`` validation runs of the chapter
 (seed 2010, uniform in ±1 N) are solved by the full non-linear solver and by the ROM, in the
 same process: the ratio of the full run's wall time to the ROM's, per pose (one pose per call,
 and a batch of ``N_BATCH``), and the ROM's pose error (largest |difference| over the runs as %
@@ -32,8 +32,8 @@ REPEATS = 5
 def rom_timings() -> dict[str, float | str]:
     """Build the ROM on the chapter's model, time it against full non-linear runs."""
     from mechlib.bench.nonlinear import _chapter_spec
-    from mechlib.hexflex import experiments as ex
-    from mechlib.hexflex.rom import ReducedOrderModel
+    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.hexflex.rom.model import ReducedOrderModel
 
     spec, source = _chapter_spec()
     solver = ex.solver_for(spec)

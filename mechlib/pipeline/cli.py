@@ -69,7 +69,7 @@ def _determinism(args: argparse.Namespace) -> int:
 def _cold_sample(rerun_dir: Path, n_nonlinear: int) -> bool:
     """Recompute a seeded sample of the FE tasks the re-run read from its cache; True if one
     differs from its cached result."""
-    from mechlib.hexflex.cachecheck import AGREE_RTOL, check_sample, read_log
+    from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_sample, read_log
 
     per_kind = {"nonlinear": n_nonlinear, "linear": 1}
     checks = check_sample(rerun_dir / HIT_LOG, rerun_dir / "fe-cache", per_kind)

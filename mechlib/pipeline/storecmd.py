@@ -17,7 +17,7 @@ import platform
 import sys
 from pathlib import Path
 
-from mechlib.hexflex import store
+from mechlib.hexflex.campaign import store
 from mechlib.pipeline.provenance import commit, cpu_model
 
 #: non-linear and linear tasks of the store that ``make test`` recomputes cold
@@ -50,7 +50,7 @@ def _pack(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from mechlib.hexflex.cachecheck import AGREE_RTOL, check_entries
+    from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_entries
 
     _, entries = store.read_store(args.store)
     seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed

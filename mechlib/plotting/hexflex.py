@@ -2,8 +2,8 @@
 directions (Fig 4), mesh (Fig 5) and deformed shapes (Fig 8 style).
 
 Meshes are passed as objects with ``nodes`` (n, 2) [mm] and ``quads`` (m, 4) arrays
-(:class:`mechlib.hexflex.mesh.PlanarMesh`); displacements arrive solved
-(:meth:`mechlib.hexflex.model.HexFlexModel.midplane_shapes`).
+(:class:`mechlib.hexflex.fe.mesh.PlanarMesh`); displacements arrive solved
+(:meth:`mechlib.hexflex.fe.model.HexFlexModel.midplane_shapes`).
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch, Polygon
 
+from mechlib.hexflex.fe.mesh import PlanarMesh
 from mechlib.hexflex.geometry import TAB_ANGLES_DEG, HexFlexGeometry, ground_polygons
-from mechlib.hexflex.mesh import PlanarMesh
 from mechlib.plotting.style import (
     ACTIVE_COLOR,
     OURS_COLOR,

@@ -58,7 +58,7 @@ FIG1 = MethodFigure(
         MethodStep(
             "Build a virtual (finite-element) model of the mechanism",
             (("hexflex_model", "identification"), ("hexflex_model", "Figures 2–5")),
-            ("mechlib.hexflex.model.HexFlexModel", "mechlib.hexflex.identify.identify"),
+            ("mechlib.hexflex.fe.model.HexFlexModel", "mechlib.hexflex.identify.identify"),
         ),
         MethodStep(
             "Screen the factors with a factorial design (Plackett–Burman)",
@@ -74,7 +74,7 @@ FIG1 = MethodFigure(
             (("published_doe", "Table 4"), ("virtual_experiments", "Table 4")),
             (
                 "mechlib.doe.centered_l2_discrepancy_squared",
-                "mechlib.hexflex.experiments.run_experiments",
+                "mechlib.hexflex.campaign.experiments.run_experiments",
             ),
         ),
         MethodStep(
@@ -89,7 +89,10 @@ FIG1 = MethodFigure(
         MethodStep(
             "Verify the meta-model's accuracy with extra experiments",
             (("virtual_experiments", "Table 5"),),
-            ("mechlib.metamodel.error_metrics", "mechlib.hexflex.linearity.linearity_sweep"),
+            (
+                "mechlib.metamodel.error_metrics",
+                "mechlib.hexflex.studies.linearity.linearity_sweep",
+            ),
         ),
     ),
 )

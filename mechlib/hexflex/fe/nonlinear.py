@@ -9,12 +9,12 @@ factorisation (the tangent at u = 0 *is* the linear stiffness). By default it is
 method: a factorised tangent is kept while its (Anderson-accelerated) corrections converge fast
 enough, and refactorised when they slow down — 3 factorisations per validation run on the
 identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
-and the residual are computed by :mod:`mechlib.hexflex.svk_tangent` (the same numbers as SfePy's
+and the residual are computed by :mod:`mechlib.hexflex.fe.svk_tangent` (the same numbers as SfePy's
 term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
-done once (:mod:`mechlib.hexflex.factor`). Q2 solid only.
+done once (:mod:`mechlib.hexflex.fe.factor`). Q2 solid only.
 
 ``tangent="sfepy"`` assembles SfePy's TL term instead (its consistent variant, from
-:mod:`mechlib.hexflex.sfepy_tl`): the reference the batched tangent is tested and benchmarked
+:mod:`mechlib.hexflex.fe.sfepy_tl`): the reference the batched tangent is tested and benchmarked
 against.
 """
 
@@ -29,14 +29,14 @@ import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex.factor import SOLVERS, PatternCholesky, factorise
-from mechlib.hexflex.problem import QUAD_ORDER
-from mechlib.hexflex.sfepy_tl import register_svk_term, tl_evaluator
-from mechlib.hexflex.svk_tangent import SVKTangent
+from mechlib.hexflex.fe.factor import SOLVERS, PatternCholesky, factorise
+from mechlib.hexflex.fe.problem import QUAD_ORDER
+from mechlib.hexflex.fe.sfepy_tl import register_svk_term, tl_evaluator
+from mechlib.hexflex.fe.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.fe.model import HexFlexModel
 
 #: Newton stopping rule: ‖residual‖ ≤ NEWTON_TOL · ‖external load‖. The round-off floor of the
 #: TL residual on these meshes is ≈ 3e-9 (measured), so tighter values cannot be met.
@@ -101,13 +101,13 @@ class NonlinearSolver:
     model : HexFlexModel
         A Q2 model with ``body_factor`` 1 (its factorised stiffness is the first tangent).
     tangent : {"batched", "sfepy"}
-        How the tangent is assembled: :class:`mechlib.hexflex.svk_tangent.SVKTangent` (default;
+        How the tangent is assembled: :class:`mechlib.hexflex.fe.svk_tangent.SVKTangent` (default;
         built here, ≈ 0.4 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
         same matrix to round-off (``make bench`` compares them). The choice also sets the
         residual: ``SVKTangent.internal_force`` or SfePy's (equal to round-off).
     factorisation : {"cholmod", "superlu"}
         How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
-        (:class:`mechlib.hexflex.factor.PatternCholesky`, default; an indefinite tangent falls
+        (:class:`mechlib.hexflex.fe.factor.PatternCholesky`, default; an indefinite tangent falls
         back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
     quad_order : int
         Quadrature order of the batched tangent and residual (:class:`SVKTangent`'s ``order``;

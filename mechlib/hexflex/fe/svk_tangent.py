@@ -1,6 +1,6 @@
 """Fast exact tangent stiffness of the total-Lagrangian Saint Venant–Kirchhoff HexFlex (Q2).
 
-The same matrix as SfePy's ``dw_tl_he_svk_consistent`` term (:mod:`mechlib.hexflex.nonlinear`),
+The same matrix as SfePy's ``dw_tl_he_svk_consistent`` term (:mod:`mechlib.hexflex.fe.nonlinear`),
 built with batched BLAS instead of SfePy's C loop over quadrature points. With ``F = I + ∇u``
 (∇ in the reference configuration), the Green strain ``E = ½ (FᵀF − I)`` and the second
 Piola–Kirchhoff stress ``S = λ tr(E) I + 2 μ E`` (λ, μ read from SfePy's isotropic
@@ -15,7 +15,7 @@ is the quadrature weight times det J. For an isotropic ``D`` the material term n
 ``Σ_q w (λ h_ac h_bd + μ h_ad h_bc + μ b_cd ∇N_a·∇N_b)`` — one product over the stacked ``h``
 and six small ones over ∇N, half the multiplications of ``Bᵀ (D B)``. The element matrices
 are summed into the CSR pattern (or its upper triangle, what a Cholesky reads) by one
-``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.sfepy_tl.tl_evaluator`,
+``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.fe.sfepy_tl.tl_evaluator`,
 one ``D`` acts on the whole domain (the model's ``body_factor`` is not applied), and the clamp
 holds the ground at zero displacement.
 """
@@ -28,11 +28,11 @@ import numpy as np
 import scipy.sparse as sp
 from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex import problem as fe
+from mechlib.hexflex.fe import problem as fe
 from mechlib.params import check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.fe.model import HexFlexModel
 
 #: Elements per batch of matrix products: small batches keep the temporaries (≤ 1.7 MB each at
 #: 32 Q2 elements) in cache; 16–64 were measured within 5 %, 8 and 128 6–12 % slower.
@@ -54,8 +54,8 @@ class SVKTangent:
         Elements per batch of matrix products, in [1, 5000] (temporaries ∝ ``chunk``).
     order : int, optional
         Quadrature order (SfePy's, on the hexahedron), in [2, 10]: the default
-        :data:`mechlib.hexflex.problem.QUAD_ORDER` (3 × 3 × 3 Gauss points) is the linear model's;
-        a higher one checks the quadrature error of the non-linear integrands.
+        :data:`mechlib.hexflex.fe.problem.QUAD_ORDER` (3 × 3 × 3 Gauss points) is the linear
+        model's; a higher one checks the quadrature error of the non-linear integrands.
 
     Raises
     ------
@@ -152,7 +152,7 @@ class SVKTangent:
     def upper_values(self, u: object) -> np.ndarray:
         """The upper triangle (column ≥ row) of :meth:`values`, in CSR order: row by row,
         columns increasing — the lower triangle of the symmetric matrix in column-major order,
-        which is what :meth:`mechlib.hexflex.factor.PatternCholesky.factorise_upper` of
+        which is what :meth:`mechlib.hexflex.fe.factor.PatternCholesky.factorise_upper` of
         :meth:`pattern` takes. Only the element-matrix entries that land there are summed; the
         same numbers, bit for bit, as ``values(u)`` at those positions. Raises as :meth:`matrix`.
         """

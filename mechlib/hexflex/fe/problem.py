@@ -23,8 +23,8 @@ from typing import Any
 import numpy as np
 
 from mechlib.hexflex import geometry as geo
-from mechlib.hexflex import mesh as ms
-from mechlib.hexflex.pose import fit_operator
+from mechlib.hexflex.fe import mesh as ms
+from mechlib.hexflex.fe.pose import fit_operator
 
 ELEMENTS: tuple[str, ...] = ("q2", "shell")
 #: Shell drilling stiffness factor (SfePy's shell10x examples).

@@ -1,8 +1,9 @@
 """A results store: the pose-level results of FE tasks, kept as one versioned data set.
 
-The FE cache (:mod:`mechlib.hexflex.experiments`) holds one ``<key>.npy`` file per task, where
-the key digests the model specification, the kind of analysis, the load steps, the forces and
-the sources that define a result (:func:`~mechlib.hexflex.taskcache.model_code_fingerprint`).
+The FE cache (:mod:`mechlib.hexflex.campaign.experiments`) holds one ``<key>.npy`` file per task,
+where the key digests the model specification, the kind of analysis, the load steps, the forces and
+the sources that define a result
+(:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`).
 A store is a folder with two files: ``results.npz`` (every task's inputs and poses, a few bytes
 a run; no displacement field) and ``manifest.json`` (format version, the code fingerprint, a
 SHA-256 of ``results.npz``, counts, and what the build wing adds: commit, date, processor,
@@ -29,9 +30,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.experiments import KINDS
-from mechlib.hexflex.model import MAX_FORCE_N
-from mechlib.hexflex.taskcache import model_code_fingerprint, task_key
+from mechlib.hexflex.campaign.experiments import KINDS
+from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
+from mechlib.hexflex.fe.model import MAX_FORCE_N
 
 #: Format of ``manifest.json`` and ``results.npz`` this code reads and writes.
 STORE_VERSION = 1

@@ -1,7 +1,7 @@
 """Where FE experiments run: in-process, on a pool of worker processes that share the cores, or
 on a Dask cluster.
 
-:func:`mechlib.hexflex.experiments.run_experiments` takes any
+:func:`mechlib.hexflex.campaign.experiments.run_experiments` takes any
 :class:`concurrent.futures.Executor`. :func:`executor` gives the one a notebook asked for: with
 ``$MECHLIB_DASK_SCHEDULER`` set to a scheduler's address (``make store DASK_SCHEDULER=…``), every
 campaign goes to that cluster (:func:`dask_executor`), whatever its ``workers``.

@@ -1,11 +1,11 @@
 """The factorised linear FE model of the HexFlex: assemble and factorise once, solve many cases.
 
-:func:`mechlib.hexflex.problem.build` sets up the SfePy problem (mesh, clamp, edge loads, pose
+:func:`mechlib.hexflex.fe.problem.build` sets up the SfePy problem (mesh, clamp, edge loads, pose
 fit); this module assembles its stiffness once, factorises it, and answers load cases by
 back-substitution: a load case costs one solve, and the 6 × 6 compliance (pose per unit actuator
 force, µm/N and µrad/N, columns in the order of Eq 4) six of them. The geometrically non-linear
-solve is built on a model, ``NonlinearSolver(model)`` (:mod:`mechlib.hexflex.nonlinear`; the
-model knows nothing of it), the mesh study lives in :mod:`mechlib.hexflex.convergence`.
+solve is built on a model, ``NonlinearSolver(model)`` (:mod:`mechlib.hexflex.fe.nonlinear`; the
+model knows nothing of it), the mesh study lives in :mod:`mechlib.hexflex.studies.convergence`.
 """
 
 from __future__ import annotations
@@ -19,9 +19,9 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex import geometry as geo
-from mechlib.hexflex import mesh as ms
-from mechlib.hexflex import problem as fe
-from mechlib.hexflex.factor import factorise
+from mechlib.hexflex.fe import mesh as ms
+from mechlib.hexflex.fe import problem as fe
+from mechlib.hexflex.fe.factor import factorise
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.params import check_choice, check_float, check_matrix
 
@@ -166,7 +166,7 @@ class HexFlexModel:
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The stage's nodes (m, 3) [mm] and their displacements (m, 3) [mm] in the reduced
         displacement vector ``reduced``: what :meth:`pose_of` fits, for an exact rigid
-        registration (:func:`mechlib.hexflex.finite_pose.finite_poses`)."""
+        registration (:func:`mechlib.hexflex.fe.finite_pose.finite_poses`)."""
         points = self.fe.coors[geo.in_stage(self.fe.coors, self.geometry)]
         return points, np.asarray(reduced)[self.fe.stage_idx].reshape(-1, 3)
 

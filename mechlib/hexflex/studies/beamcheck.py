@@ -1,6 +1,6 @@
 """One flexure against beam theory: a clamped rectangular beam meshed and solved like the HexFlex.
 
-The beam is meshed with the same elements as :class:`mechlib.hexflex.model.HexFlexModel` (one
+The beam is meshed with the same elements as :class:`mechlib.hexflex.fe.model.HexFlexModel` (one
 layer of Q2 hexahedra through the thickness, ``n_width`` elements across) and loaded by a force
 spread over its last ``tip_length`` mm; the mean deflection of the loaded end face is compared
 with the Timoshenko cantilever (:func:`timoshenko_tip`, κ = 5/6) loaded at the load's centre and
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.hexflex import mesh as ms
+from mechlib.hexflex.fe import mesh as ms
 from mechlib.hexflex.frame import SHEAR_FACTOR
 from mechlib.params import check_choice, check_float, check_int
 
@@ -61,7 +61,7 @@ def fe_tip(
     tip_length: float | None = None,
 ) -> float:
     """Mean tip deflection per unit force [mm/N] of the Q2 one-layer model of the beam."""
-    from mechlib.hexflex.problem import QUAD_ORDER, integral, quiet_sfepy
+    from mechlib.hexflex.fe.problem import QUAD_ORDER, integral, quiet_sfepy
 
     quiet_sfepy()  # before the first SfePy import prints its notices
     from sfepy.discrete import Equation, Equations, FieldVariable, Material, Problem

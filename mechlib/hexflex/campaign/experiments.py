@@ -23,28 +23,28 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.executors import InProcessExecutor
-from mechlib.hexflex.finite_pose import CONVENTIONS, finite_poses
-from mechlib.hexflex.geometry import HexFlexGeometry
-from mechlib.hexflex.model import (
-    AL7075_POISSON,
-    AL7075_YOUNG_MPA,
-    HexFlexModel,
-    check_forces,
-)
-from mechlib.hexflex.nonlinear import NonlinearSolver
-from mechlib.hexflex.problem import QUAD_ORDER
-from mechlib.hexflex.taskcache import (
+from mechlib.hexflex.campaign.executors import InProcessExecutor
+from mechlib.hexflex.campaign.taskcache import (
     cache_result,
     cached_result,
     log_task,
     model_code_fingerprint,
     task_key,
 )
+from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
+from mechlib.hexflex.fe.model import (
+    AL7075_POISSON,
+    AL7075_YOUNG_MPA,
+    HexFlexModel,
+    check_forces,
+)
+from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+from mechlib.hexflex.fe.problem import QUAD_ORDER
+from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_choice, check_int
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
-#: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.finite_pose`): the
+#: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.fe.finite_pose`): the
 #: small-rotation fit of the stage nodes (the linear model's and the tables' pose), and the exact
 #: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
 #: the first only (a linear displacement field is no finite rotation).
@@ -65,7 +65,7 @@ class ModelSpec:
     mesh_size: float | None = None
     element: str = "q2"
     #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
-    #: linear model always uses :data:`mechlib.hexflex.problem.QUAD_ORDER`
+    #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
     quad_order: int = QUAD_ORDER
 
     def __post_init__(self) -> None:

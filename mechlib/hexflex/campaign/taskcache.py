@@ -1,10 +1,10 @@
 """The FE cache's files: task keys, the code fingerprint in them, atomic writes, the task log.
 
-:func:`mechlib.hexflex.experiments.run_experiments` caches each finished task as
+:func:`mechlib.hexflex.campaign.experiments.run_experiments` caches each finished task as
 ``<key>.npy`` (its poses) under a key made of the cache format, the fingerprint of the sources
 that define a result, the model specification, the kind, the load steps and the forces; the
-results store (:mod:`mechlib.hexflex.store`) and the cold checks
-(:mod:`mechlib.hexflex.cachecheck`) recompute the same keys.
+results store (:mod:`mechlib.hexflex.campaign.store`) and the cold checks
+(:mod:`mechlib.hexflex.campaign.cachecheck`) recompute the same keys.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.sources import model_modules
+from mechlib.hexflex.campaign.sources import model_modules
 from mechlib.paths import fe_log_path
 
 CACHE_VERSION = 2  # 2: a non-linear task stores its poses in the three conventions
@@ -82,9 +82,9 @@ def cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None:
 
 def log_task(path: Path, spec: str, kind: str, forces: np.ndarray, steps: int, hit: bool) -> None:
     """Append a task to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file, the task's
-    inputs and whether it was read from the cache), so that :mod:`mechlib.hexflex.cachecheck`
-    can recompute a sample of the hits cold and :mod:`mechlib.hexflex.store` can collect every
-    task a build used."""
+    inputs and whether it was read from the cache), so that
+    :mod:`mechlib.hexflex.campaign.cachecheck` can recompute a sample of the hits cold and
+    :mod:`mechlib.hexflex.campaign.store` can collect every task a build used."""
     log = fe_log_path()
     if log is not None:
         entry = {"file": path.name, "spec": spec, "kind": kind, "steps": steps, "hit": hit}

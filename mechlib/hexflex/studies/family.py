@@ -18,8 +18,8 @@ import numpy as np
 
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
+from mechlib.hexflex.fe.model import AL7075_POISSON, AL7075_YOUNG_MPA, compliance_maker, model_maker
 from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
-from mechlib.hexflex.model import AL7075_POISSON, AL7075_YOUNG_MPA, compliance_maker, model_maker
 from mechlib.params import check_float
 
 #: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
@@ -171,7 +171,7 @@ def identify_member(
     thickness : float
         The member's plate thickness [mm], within the layout's bounds.
     mesh_fraction : float
-        As for :func:`mechlib.hexflex.model.model_maker`.
+        As for :func:`mechlib.hexflex.fe.model.model_maker`.
     free, max_evaluations, tol
         As for :func:`mechlib.hexflex.identify.identify`: ``tol`` is the largest
         |log(achieved / target)| over the four magnitudes that the member may keep.

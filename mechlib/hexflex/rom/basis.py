@@ -1,4 +1,4 @@
-"""The reduced basis of the non-linear HexFlex ROM (:mod:`mechlib.hexflex.rom`).
+"""The reduced basis of the non-linear HexFlex ROM (:mod:`mechlib.hexflex.rom.model`).
 
 Static modes and their static modal derivatives, POD of given displacement fields (Euclidean or
 energy inner product), third-order corrections of the second-order responses, the seeded
@@ -13,7 +13,7 @@ import numpy as np
 import scipy.sparse as sp
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 
 #: Basis vectors whose Gram–Schmidt remainder is below this fraction of their norm are dropped.
 RANK_TOL = 1e-8

@@ -1,6 +1,6 @@
 """A physics-based, hyper-reduced reduced-order model (ROM) of the geometrically non-linear HexFlex.
 
-**Basis** (:mod:`mechlib.hexflex.rom_basis`). The six static modes ``φ_j = K₀⁻¹ L e_j`` (the
+**Basis** (:mod:`mechlib.hexflex.rom.basis`). The six static modes ``φ_j = K₀⁻¹ L e_j`` (the
 linear responses to unit actuator forces) and their 21 static modal derivatives
 ``θ_ij = −K₀⁻¹ 2 N₂(φ_i, φ_j)`` (Idelsohn & Cardona 1985; Jain & Tiso 2017), with ``N₂`` the
 quadratic part of the Saint Venant–Kirchhoff (SVK) internal force ``f``, which is an exact cubic:
@@ -12,7 +12,7 @@ each of the part outside the vectors already in the basis, in the energy inner p
 ``xᵀ K₀ y`` or the Euclidean one (``pod_inner``). ``modal_derivatives=False`` keeps the
 derivatives out of the basis. The basis is orthonormalised (Euclidean).
 
-**Hyper-reduction** (:mod:`mechlib.hexflex.ecsw`). Energy-conserving sampling and weighting
+**Hyper-reduction** (:mod:`mechlib.hexflex.rom.ecsw`). Energy-conserving sampling and weighting
 (ECSW; Farhat, Avery, Chapman & Cortial 2014; Farhat, Chapman & Avery 2015): a sparse set of
 weighted elements whose summed projected forces reproduce the quadratic and cubic parts of the
 non-linear reduced force, separately, at training states — the second-order responses at
@@ -20,7 +20,7 @@ non-linear reduced force, separately, at training states — the second-order re
 relative error ``ecsw_tol`` with at most ``max_elements`` elements.
 ``hyper_reduction=False`` sums every element instead (exact Galerkin; small meshes only).
 
-**Reduced force** (:mod:`mechlib.hexflex.rom_tensors`). On the weighted elements the SVK reduced
+**Reduced force** (:mod:`mechlib.hexflex.rom.tensors`). On the weighted elements the SVK reduced
 internal force is an exact polynomial in the reduced coordinates ``q``: the exact reduced linear
 stiffness ``Vᵀ K₀ V`` plus cubic and quartic energy tensors, so evaluating it costs the same
 whatever the number of elements.
@@ -48,13 +48,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from threadpoolctl import ThreadpoolController, threadpool_limits
 
-from mechlib.hexflex import ecsw
-from mechlib.hexflex import rom_basis as rb
-from mechlib.hexflex.rom_tensors import PolynomialForce, polynomial_force
+from mechlib.hexflex.rom import basis as rb
+from mechlib.hexflex.rom import ecsw
+from mechlib.hexflex.rom.tensors import PolynomialForce, polynomial_force
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 
 #: Reduced Newton stops at ‖Vᵀ(f − L F)‖ ≤ TOL ‖Vᵀ L F‖ (the polynomial is exact: round-off).
 TOL = 1e-10
@@ -93,7 +93,7 @@ class ReducedOrderModel:
         Stage pose [µm, µrad] per reduced coordinate.
     predictor : ndarray (83, n_basis)
         Newton's start: coefficients of the force monomials of degree 1 to 3
-        (:func:`mechlib.hexflex.rom_basis.monomials`), a least-squares fit of the ROM's own
+        (:func:`mechlib.hexflex.rom.basis.monomials`), a least-squares fit of the ROM's own
         equilibria at ``N_PREDICT`` seeded forces (started from the second-order response).
     cells, weights : ndarray
         The elements summed and their weights.
@@ -187,7 +187,7 @@ class ReducedOrderModel:
         ValueError, TypeError
             On a bad argument (named, with what is allowed).
         """
-        from mechlib.hexflex.model import MAX_FORCE_N
+        from mechlib.hexflex.fe.model import MAX_FORCE_N
 
         if solver.batched is None:
             raise ValueError("solver must use the batched tangent (tangent='batched')")

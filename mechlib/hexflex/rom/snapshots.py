@@ -1,9 +1,9 @@
 """Converged non-linear displacement fields (snapshots) of a force design, cached on disk.
 
-A reduced-order model is built from full solutions, not poses (:mod:`mechlib.hexflex.rom`):
+A reduced-order model is built from full solutions, not poses (:mod:`mechlib.hexflex.rom.model`):
 :func:`nonlinear_states` solves each force vector with the model's non-linear solver (in an
-executor, as :func:`mechlib.hexflex.experiments.run_experiments` does) and keeps each field in
-the FE cache under a key made of the model code, the model specification and the forces.
+executor, as :func:`mechlib.hexflex.campaign.experiments.run_experiments` does) and keeps each
+field in the FE cache under a key made of the model code, the model specification and the forces.
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.executors import InProcessExecutor
-from mechlib.hexflex.experiments import (
+from mechlib.hexflex.campaign.executors import InProcessExecutor
+from mechlib.hexflex.campaign.experiments import (
     ModelSpec,
     check_forces_design,
     model_code_fingerprint,
@@ -62,7 +62,7 @@ def nonlinear_states(
 
     Raises
     ------
-    mechlib.hexflex.nonlinear.ConvergenceError
+    mechlib.hexflex.fe.nonlinear.ConvergenceError
         From the first run that does not converge (a snapshot set must be complete).
     """
     d = check_forces_design(design)

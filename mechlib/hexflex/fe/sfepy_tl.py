@@ -5,7 +5,7 @@ tangent is not the derivative of its residual (Newton then converges only linear
 :func:`register_svk_term` adds ``dw_tl_he_svk_consistent``, the same residual with the consistent
 tangent; ``tests/test_hexflex.py`` checks it against finite differences of the residual.
 :func:`tl_evaluator` evaluates either term on a model's field and clamp. The solver's default
-tangent and residual (:mod:`mechlib.hexflex.svk_tangent`) compute the same numbers batched; this
+tangent and residual (:mod:`mechlib.hexflex.fe.svk_tangent`) compute the same numbers batched; this
 module is their reference (tests, ``make bench``) and the solver's ``tangent="sfepy"``.
 """
 
@@ -13,10 +13,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mechlib.hexflex import problem as fe
+from mechlib.hexflex.fe import problem as fe
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.model import HexFlexModel
+    from mechlib.hexflex.fe.model import HexFlexModel
 
 
 def tl_evaluator(model: HexFlexModel, term: str):

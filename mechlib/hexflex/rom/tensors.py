@@ -3,7 +3,7 @@
 With a reduced basis ``V`` the displacement gradient at a quadrature point is linear in the
 reduced coordinates, ``H(q) = G q``, so the Green strain ``E = ε(q) + Q(q)`` (``ε = sym H``,
 ``Q = ½ HᵀH``) is quadratic and the SVK strain energy ``½ E:D:E`` quartic. Summed with weights
-``w_e`` over elements (all of them, or an ECSW sample, :mod:`mechlib.hexflex.ecsw`), the reduced
+``w_e`` over elements (all of them, or an ECSW sample, :mod:`mechlib.hexflex.rom.ecsw`), the reduced
 energy is
 
     W(q) = ½ qᵀ K q + b(q, q, q) + ½ c(q, q, q, q),
@@ -24,10 +24,10 @@ import numpy as np
 from scipy.linalg.blas import dsymv, dsyrk
 from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex.ecsw import element_basis
+from mechlib.hexflex.rom.ecsw import element_basis
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.svk_tangent import SVKTangent
+    from mechlib.hexflex.fe.svk_tangent import SVKTangent
 
 #: Elements per batch when the tensors are accumulated (temporaries ∝ CHUNK · n²).
 CHUNK = 8

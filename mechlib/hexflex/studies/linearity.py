@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.hexflex.model import MAX_FORCE_N
-from mechlib.hexflex.nonlinear import NonlinearSolver
+from mechlib.hexflex.fe.model import MAX_FORCE_N
+from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.params import check_increasing, check_int, check_matrix
 
 #: The linear model's error budget of the chapter's sweep [%]: where the linear model stops

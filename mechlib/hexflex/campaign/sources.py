@@ -1,7 +1,7 @@
 """Which source files define an FE result: the modules a task runs and all they import.
 
-:mod:`mechlib.hexflex.experiments` keys its disk cache on these sources, so that a change to
-the mesher, the model or the solver can never return results computed by the old code.
+:mod:`mechlib.hexflex.campaign.experiments` keys its disk cache on these sources, so that a change
+to the mesher, the model or the solver can never return results computed by the old code.
 """
 
 from __future__ import annotations
@@ -12,9 +12,9 @@ from pathlib import Path
 
 #: The modules a task runs (the linear model, the non-linear solver, the finite-rotation pose).
 TASK_MODULES: tuple[str, ...] = (
-    "mechlib.hexflex.model",
-    "mechlib.hexflex.nonlinear",
-    "mechlib.hexflex.finite_pose",
+    "mechlib.hexflex.fe.model",
+    "mechlib.hexflex.fe.nonlinear",
+    "mechlib.hexflex.fe.finite_pose",
 )
 
 

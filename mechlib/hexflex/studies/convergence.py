@@ -10,8 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechlib.hexflex import geometry as geo
-from mechlib.hexflex.identify import target_values
-from mechlib.hexflex.model import (
+from mechlib.hexflex.fe.model import (
     AL7075_POISSON,
     AL7075_YOUNG_MPA,
     COARSE_WIDTHS,
@@ -19,6 +18,7 @@ from mechlib.hexflex.model import (
     HexFlexModel,
     coarsening_for,
 )
+from mechlib.hexflex.identify import target_values
 from mechlib.params import check_float
 
 

@@ -8,8 +8,8 @@ squares that stops at a relative tolerance. Non-negative weights keep the reduce
 gradient of a (positive) weighted strain energy, hence symmetric and stable.
 
 Only the *non-linear* part of the element forces, ``f_e(x) − K_e x``, is fitted here: the reduced
-model keeps the exact reduced linear stiffness ``Vᵀ K₀ V`` (:mod:`mechlib.hexflex.rom`), so that it
-reproduces the linear model to round-off at small loads whatever the sampled elements.
+model keeps the exact reduced linear stiffness ``Vᵀ K₀ V`` (:mod:`mechlib.hexflex.rom.model`), so
+that it reproduces the linear model to round-off at small loads whatever the sampled elements.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from threadpoolctl import threadpool_limits
 from mechlib.params import check_float, check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.svk_tangent import SVKTangent
+    from mechlib.hexflex.fe.svk_tangent import SVKTangent
 
 #: Elements per batch when the element contributions are computed (temporaries ∝ CHUNK).
 CHUNK = 64

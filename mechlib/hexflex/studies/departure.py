@@ -22,8 +22,8 @@ import numpy as np
 from mechlib.params import check_matrix
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.experiments import ModelSpec
-    from mechlib.hexflex.nonlinear import NonlinearSolver
+    from mechlib.hexflex.campaign.experiments import ModelSpec
+    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 
 
 def parity_split(plus: object, minus: object, linear_plus: object) -> dict[str, np.ndarray]:
@@ -105,13 +105,13 @@ def linear_poses(solver: NonlinearSolver, forces: object) -> np.ndarray:
     -------
     numpy.ndarray (n, 6)
         The linear stage poses [µm, µrad], one row per force vector, as
-        :meth:`mechlib.hexflex.model.HexFlexModel.pose_of` fits them.
+        :meth:`mechlib.hexflex.fe.model.HexFlexModel.pose_of` fits them.
 
     Raises
     ------
     ValueError
         If ``forces`` is not (n, 6) (or (6,)) finite values within ±
-        :data:`mechlib.hexflex.model.MAX_FORCE_N`.
+        :data:`mechlib.hexflex.fe.model.MAX_FORCE_N`.
     """
     model = solver.model
     f = model.check_forces(forces)
@@ -150,7 +150,8 @@ def relative_change(values: object, reference: object) -> np.ndarray:
 def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
     """:func:`linear_poses` of the non-linear solve that ``spec`` defines (its mesh and
     quadrature): at the model's own quadrature the (cached) linear model's poses; at another one
-    those of the process's solver of ``spec`` (:func:`mechlib.hexflex.experiments.solver_for`,
+    those of the process's solver of ``spec``
+    (:func:`mechlib.hexflex.campaign.experiments.solver_for`,
     the one an in-process run used; a Q2 solver of the identified model holds gigabytes, so
     none is built twice).
 
@@ -166,8 +167,8 @@ def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
     numpy.ndarray (n, 6)
         The linear stage poses [µm, µrad] on ``spec``'s mesh, with its quadrature.
     """
-    from mechlib.hexflex.experiments import model_for, solver_for
-    from mechlib.hexflex.problem import QUAD_ORDER
+    from mechlib.hexflex.campaign.experiments import model_for, solver_for
+    from mechlib.hexflex.fe.problem import QUAD_ORDER
 
     if spec.quad_order == QUAD_ORDER:
         return model_for(spec).poses(forces)

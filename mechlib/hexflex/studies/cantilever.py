@@ -2,7 +2,7 @@
 
 A prismatic cantilever of Q2 (27-node) hexahedra, clamped at x = 0, carries a dead load P along
 +z spread as a uniform traction over its end face. :class:`Cantilever` has what
-:class:`~mechlib.hexflex.nonlinear.NonlinearSolver` and :class:`~mechlib.hexflex.svk_tangent.
+:class:`~mechlib.hexflex.fe.nonlinear.NonlinearSolver` and :class:`~mechlib.hexflex.fe.svk_tangent.
 SVKTangent` read from a ``HexFlexModel`` (``element``, ``body_factor``, ``young``, ``poisson``,
 ``fe``, ``n_dofs``, ``load_vectors``, ``check_forces``, ``back_substitute``), so the HexFlex's
 total-Lagrangian Saint Venant–Kirchhoff code path solves it; its one "actuator force" is P [N].
@@ -33,10 +33,10 @@ from scipy.optimize import brentq
 from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex import problem as fe
-from mechlib.hexflex.factor import factorise
+from mechlib.hexflex.fe import problem as fe
+from mechlib.hexflex.fe.factor import factorise
+from mechlib.hexflex.fe.nonlinear import NonlinearSolver, SolveStats
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
-from mechlib.hexflex.nonlinear import NonlinearSolver, SolveStats
 from mechlib.params import check_float, check_int, check_matrix
 
 #: Default beam: length [mm] and square section side [mm] (L/h = 50).

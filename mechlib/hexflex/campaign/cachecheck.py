@@ -3,11 +3,11 @@ a fresh process computes, bit for bit.
 
 The determinism re-run (:mod:`mechlib.pipeline.rerun`) starts from the first run's FE cache and
 logs every hit (``$MECHLIB_FE_LOG``, written by
-:func:`mechlib.hexflex.experiments.run_experiments`);
+:func:`mechlib.hexflex.campaign.experiments.run_experiments`);
 :func:`check_sample` then recomputes a seeded sample of the logged tasks in this process and
 compares each with its cached file (agreement within ``AGREE_RTOL``). The records check every
 seeded stream and every computation downstream of the FE solves; the sample checks the solves
-(the displacement fields of :mod:`mechlib.hexflex.snapshots` are not logged, nor sampled).
+(the displacement fields of :mod:`mechlib.hexflex.rom.snapshots` are not logged, nor sampled).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.experiments import KINDS, ModelSpec, release_models, task_poses
+from mechlib.hexflex.campaign.experiments import KINDS, ModelSpec, release_models, task_poses
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_int
 
@@ -114,8 +114,8 @@ def check_sample(
 
 
 def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[CacheCheck]:
-    """Recompute a seeded sample of results-store entries (:class:`mechlib.hexflex.store.Entry`)
-    and compare each with its stored poses.
+    """Recompute a seeded sample of results-store entries
+    (:class:`mechlib.hexflex.campaign.store.Entry`) and compare each with its stored poses.
 
     Parameters
     ----------
