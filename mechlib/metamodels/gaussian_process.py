@@ -23,6 +23,18 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
     L-BFGS-B's line search may also stop with status ABNORMAL; scikit-learn's
     ConvergenceWarnings saying either are expected here and not shown (any other warning is):
     the fitted processes are judged by their errors on validation data.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+    responses : array_like, shape (runs, outputs)
+    seed : int
+        Seed of the optimiser restarts.
+
+    Returns
+    -------
+    list
+        One fitted ``GaussianProcessRegressor`` per output.
     """
     from sklearn.gaussian_process import GaussianProcessRegressor
     from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
@@ -43,6 +55,17 @@ def fit_gp(design: object, responses: object, seed: int = 0) -> list[object]:
 
 
 def predict_gp(models: list[object], design: object) -> np.ndarray:
-    """Predictions (runs, outputs) of :func:`fit_gp` models."""
+    """Predictions of :func:`fit_gp` models.
+
+    Parameters
+    ----------
+    models : list
+        From :func:`fit_gp`.
+    design : array_like, shape (runs, factors)
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+    """
     x = check_matrix("design", design)
     return np.column_stack([m.predict(x) for m in models])

@@ -105,7 +105,20 @@ def fit_penalized(
 
 
 def predict_linear(s: object, design: object, b0: object | None = None) -> np.ndarray:
-    """Pose predictions ``b0 + X Sᵀ`` for a design (runs, factors)."""
+    """Pose predictions ``b0 + X Sᵀ`` of a linear model (Eq 7).
+
+    Parameters
+    ----------
+    s : array_like, shape (outputs, factors)
+        The model's matrix, e.g. S_T.
+    design : array_like, shape (runs, factors)
+    b0 : array_like, shape (outputs,), optional
+        Intercepts (none: zero).
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+    """
     s = check_matrix("S", s)
     x = check_matrix("design", design, shape=(None, s.shape[1]))
     return x @ s.T + (0.0 if b0 is None else np.asarray(b0, dtype=float))
@@ -116,6 +129,14 @@ def unit_ratio(observed: object, predicted: object) -> np.ndarray:
 
     Used to find the units a table is really printed in: a ratio of 1000 means the table is
     in units a thousand times smaller than the model's.
+
+    Parameters
+    ----------
+    observed, predicted : array_like, shape (runs, outputs)
+
+    Returns
+    -------
+    numpy.ndarray, shape (outputs,)
     """
     o = check_matrix("observed", observed)
     p = check_matrix("predicted", predicted, shape=o.shape)
@@ -125,12 +146,22 @@ def unit_ratio(observed: object, predicted: object) -> np.ndarray:
 def inverse(s: object) -> dict[str, np.ndarray]:
     """Inverse model of Eq 9 and its conditioning.
 
+    Parameters
+    ----------
+    s : array_like, shape (n, n)
+        A square linear model, e.g. S_T.
+
     Returns
     -------
     dict
         ``S_inv``, ``cond`` (2-norm condition number in the units given), ``cond_scaled``
         (after scaling each row of S to unit 2-norm, which removes the µm-vs-µrad unit choice),
         and ``identity_error`` = max |S_inv S − I|.
+
+    Raises
+    ------
+    ValueError
+        If ``s`` is not square.
     """
     s = check_matrix("S", s)
     if s.shape[0] != s.shape[1]:
@@ -146,13 +177,34 @@ def inverse(s: object) -> dict[str, np.ndarray]:
 
 
 def round_trip_error(s: object, s_inv: object, poses: object) -> float:
-    """max |S (S_inv ψ) − ψ| / max |ψ| over ``poses`` (runs, outputs): pose → force → pose."""
+    """Pose → force → pose error of a linear model and its inverse: max |S (S_inv ψ) − ψ| / max |ψ|.
+
+    Parameters
+    ----------
+    s, s_inv : array_like, shape (n, n)
+        The model (forces → poses) and its inverse (poses → forces), e.g. from :func:`inverse`.
+    poses : array_like, shape (runs, n)
+
+    Returns
+    -------
+    float
+        The largest error over every run and component, relative to the largest |pose|.
+    """
     p = check_matrix("poses", poses)
     back = predict_linear(s, predict_linear(s_inv, p))
     return float(np.abs(back - p).max() / np.abs(p).max())
 
 
 def relative_to_rows(s: object, reference: object) -> np.ndarray:
-    """|S − C| / max |C| of each row of ``reference`` C: entry errors on each response's scale."""
+    """|S − C| / max |C| of each row of ``reference`` C: entry errors on each response's scale.
+
+    Parameters
+    ----------
+    s, reference : array_like, shape (outputs, factors)
+
+    Returns
+    -------
+    numpy.ndarray, shape (outputs, factors)
+    """
     c = check_matrix("reference", reference)
     return np.abs(check_matrix("S", s, shape=c.shape) - c) / np.abs(c).max(axis=1, keepdims=True)

@@ -23,6 +23,10 @@ origin (two orders of magnitude): Table 5's published errors against the non-lin
 def error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
     """Validation errors per output column (Eqs 10–11 and two relative errors).
 
+    Parameters
+    ----------
+    truth, predicted : array_like, shape (runs, outputs)
+
     Returns
     -------
     dict
@@ -49,6 +53,10 @@ def running_error_metrics(truth: object, predicted: object) -> dict[str, np.ndar
     Shows how a validation statistic depends on the number of runs: a pointwise maximum keeps
     growing whenever a new run has a small value of some component, while the error relative
     to the response range settles once the range is explored.
+
+    Parameters
+    ----------
+    truth, predicted : array_like, shape (runs, outputs)
 
     Returns
     -------
@@ -79,6 +87,20 @@ def predict_fit(fit: object, design: object) -> np.ndarray:
     :func:`~mechlib.metamodels.linear.fit_penalized` (a dict with ``S``),
     :func:`~mechlib.metamodels.quadratic.fit_quadratic` (a dict with ``coef``) or
     :func:`~mechlib.metamodels.gaussian_process.fit_gp` (a list) returned.
+
+    Parameters
+    ----------
+    fit : dict or list
+    design : array_like, shape (runs, factors)
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+
+    Raises
+    ------
+    TypeError
+        If ``fit`` is none of these.
     """
     if isinstance(fit, list):
         return predict_gp(fit, design)

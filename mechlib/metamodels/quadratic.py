@@ -20,6 +20,10 @@ quadratic and interaction terms of Eq 6 are negligible"."""
 def quadratic_features(design: object) -> tuple[np.ndarray, list[str]]:
     """Columns of the full second-order model of Eq 6: 1, τ_i, τ_i², τ_i τ_j (i < j).
 
+    Parameters
+    ----------
+    design : array_like, shape (runs, k)
+
     Returns
     -------
     features : numpy.ndarray, shape (runs, 1 + 2k + k(k-1)/2)
@@ -42,6 +46,11 @@ def quadratic_features(design: object) -> tuple[np.ndarray, list[str]]:
 def fit_quadratic(design: object, responses: object) -> dict[str, object]:
     """Least-squares fit of the full second-order model of Eq 6 (see :func:`quadratic_features`).
 
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+    responses : array_like, shape (runs, outputs)
+
     Returns
     -------
     dict
@@ -63,13 +72,29 @@ def fit_quadratic(design: object, responses: object) -> dict[str, object]:
 
 
 def predict_quadratic(coef: object, design: object) -> np.ndarray:
-    """Predictions of a :func:`fit_quadratic` model for a design (runs, factors)."""
+    """Predictions of a :func:`fit_quadratic` model.
+
+    Parameters
+    ----------
+    coef : array_like, shape (features, outputs)
+        ``fit_quadratic(...)["coef"]``.
+    design : array_like, shape (runs, factors)
+
+    Returns
+    -------
+    numpy.ndarray, shape (runs, outputs)
+    """
     a, _ = quadratic_features(design)
     return a @ check_matrix("coef", coef, shape=(a.shape[1], None))
 
 
 def quadratic_parts(fit: dict[str, object]) -> dict[str, np.ndarray]:
     """The terms of a :func:`fit_quadratic` model by order.
+
+    Parameters
+    ----------
+    fit : dict
+        From :func:`fit_quadratic`.
 
     Returns
     -------
@@ -84,6 +109,8 @@ def quadratic_parts(fit: dict[str, object]) -> dict[str, np.ndarray]:
 
 
 def second_order_ratio(fit: dict[str, object]) -> np.ndarray:
-    """Largest |second-order coefficient| over largest |linear one|, per output (outputs,)."""
+    """Largest |second-order coefficient| over largest |linear one| of a :func:`fit_quadratic`
+    result ``fit``, per output: an array (outputs,), below ``NEGLIGIBLE_SECOND_ORDER`` where Eq 6's
+    quadratic and interaction terms are negligible."""
     parts = quadratic_parts(fit)
     return np.abs(parts["second"]).max(axis=0) / np.abs(parts["S"]).max(axis=1)
