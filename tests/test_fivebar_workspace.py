@@ -6,6 +6,7 @@ import pytest
 from mechlib import published as pub
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import workspace as ws
+from mechlib.mechanisms import dyad
 
 PHI1 = kin.leg_vector(pub.TABLE7_NOMINAL, 1)
 PHI2 = kin.leg_vector(pub.TABLE7_NOMINAL, 2)
@@ -74,7 +75,7 @@ def test_leg_chain_closes_the_vector_loop_of_eq22() -> None:
         np.testing.assert_allclose(p, point)
         assert np.hypot(*(b - a)) == pytest.approx(phi[0], rel=1e-12)
         assert np.hypot(*(p - b)) == pytest.approx(phi[1], rel=1e-12)
-        assert theta == pytest.approx(kin.active_angle(point, phi, mode)[0], abs=0)
+        assert theta == pytest.approx(dyad.active_angle(point[None, :], phi, mode)[0], abs=0)
         # the elbow is the one the joint reading puts there (Eqs 13, 20)
         np.testing.assert_allclose(b, kin.elbow(kin.joint_reading(point, phi, mode), phi)[0])
     chains = ws.mechanism_chains(point, PHI1, PHI2)

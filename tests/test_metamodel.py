@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from mechlib import metamodel
 from mechlib import published as pub
+from mechlib.metamodels import gaussian_process, linear, metrics, quadratic
 
 
 def _linear_data(seed: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -16,46 +16,44 @@ def _linear_data(seed: int = 3) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def test_ols_recovers_an_exact_linear_model() -> None:
     x, s, y = _linear_data()
-    fit = metamodel.fit_linear(x, y)
+    fit = linear.fit_linear(x, y)
     np.testing.assert_allclose(fit["S"], s, rtol=1e-10, atol=1e-9)
     assert np.abs(fit["residuals"]).max() < 1e-8
-    np.testing.assert_allclose(metamodel.fit_linear(x, y + 2.0, intercept=True)["b0"], 2.0)
+    np.testing.assert_allclose(linear.fit_linear(x, y + 2.0, intercept=True)["b0"], 2.0)
 
 
 @pytest.mark.parametrize("method", ["ridge", "lasso"])
 def test_penalized_fits_stay_close_on_noise_free_data(method: str) -> None:
     x, s, y = _linear_data()
-    fit = metamodel.fit_penalized(x, y, method=method)
+    fit = linear.fit_penalized(x, y, method=method)
     assert np.abs(fit["S"] - s).max() <= 0.02 * np.abs(s).max()
 
 
 def test_quadratic_features_match_eq6_term_count() -> None:
-    feats, names = metamodel.quadratic_features(np.zeros((3, 6)))
+    feats, names = quadratic.quadratic_features(np.zeros((3, 6)))
     assert feats.shape == (3, 1 + 6 + 6 + 15) and names[7] == "t0^2" and names[-1] == "t4*t5"
 
 
 def test_inverse_of_eq8_is_a_true_inverse() -> None:
-    inv = metamodel.inverse(pub.EQ8_ST)
+    inv = linear.inverse(pub.EQ8_ST)
     assert inv["identity_error"] < 1e-12
     assert inv["cond_scaled"] < inv["cond"]
 
 
 def test_unit_ratio_detects_a_scale() -> None:
     p = np.arange(1.0, 7.0).reshape(3, 2)
-    assert metamodel.unit_ratio(1000 * p, p).tolist() == [1000.0, 1000.0]
+    assert linear.unit_ratio(1000 * p, p).tolist() == [1000.0, 1000.0]
 
 
 def test_error_metrics_by_hand() -> None:
-    m = metamodel.error_metrics([[2.0], [-4.0], [0.0]], [[2.5], [-4.0], [0.1]])
+    m = metrics.error_metrics([[2.0], [-4.0], [0.0]], [[2.5], [-4.0], [0.1]])
     assert m["maxabs"][0] == 0.5 and m["max_rel_pct"][0] == 25.0
     assert m["rmse"][0] == pytest.approx(np.sqrt((0.25 + 0.01) / 3))
     assert m["max_range_pct"][0] == pytest.approx(12.5)
 
 
 def test_running_error_metrics_by_hand_and_against_the_full_set() -> None:
-    r = metamodel.running_error_metrics(
-        [[2.0], [-4.0], [0.0], [1.0]], [[2.5], [-4.0], [0.1], [1.5]]
-    )
+    r = metrics.running_error_metrics([[2.0], [-4.0], [0.0], [1.0]], [[2.5], [-4.0], [0.1], [1.5]])
     assert r["runs"].tolist() == [1, 2, 3, 4]
     # pointwise: a run with ψ = 0 counts as 0 %, the small last value raises the maximum
     assert r["max_rel_pct"][:, 0].tolist() == [25.0, 25.0, 25.0, 50.0]
@@ -64,23 +62,23 @@ def test_running_error_metrics_by_hand_and_against_the_full_set() -> None:
     rng = np.random.default_rng(3)
     t = rng.normal(size=(50, 3))
     p = t + 0.01 * rng.normal(size=t.shape)
-    full, run = metamodel.error_metrics(t, p), metamodel.running_error_metrics(t, p)
+    full, run = metrics.error_metrics(t, p), metrics.running_error_metrics(t, p)
     for key in ("max_rel_pct", "max_range_pct"):
         np.testing.assert_array_equal(run[key][-1], full[key])
     assert np.all(np.diff(run["max_rel_pct"], axis=0) >= 0)
     with pytest.raises(ValueError, match="predicted must have shape"):
-        metamodel.running_error_metrics(t, p[:-1])
+        metrics.running_error_metrics(t, p[:-1])
 
 
 def test_bad_input() -> None:
     with pytest.raises(ValueError, match="at least 7 runs"):
-        metamodel.fit_linear(np.zeros((6, 6)), np.zeros((6, 1)), intercept=True)
+        linear.fit_linear(np.zeros((6, 6)), np.zeros((6, 1)), intercept=True)
     with pytest.raises(ValueError, match=r"responses must have shape \(30, any\)"):
-        metamodel.fit_linear(np.zeros((30, 6)), np.zeros((29, 6)))
+        linear.fit_linear(np.zeros((30, 6)), np.zeros((29, 6)))
     with pytest.raises(ValueError, match=r"method must be one of \['ridge', 'lasso'\]"):
-        metamodel.fit_penalized(np.zeros((30, 6)), np.zeros((30, 6)), method="elastic")
+        linear.fit_penalized(np.zeros((30, 6)), np.zeros((30, 6)), method="elastic")
     with pytest.raises(ValueError, match="square"):
-        metamodel.inverse(np.zeros((6, 5)))
+        linear.inverse(np.zeros((6, 5)))
 
 
 def test_quadratic_parts_recover_a_known_second_order_model() -> None:
@@ -88,14 +86,14 @@ def test_quadratic_parts_recover_a_known_second_order_model() -> None:
     y = y + 5.0
     y[:, 0] += 0.5 * x[:, 0] ** 2
     y[:, 1] += 0.2 * x[:, 1] * x[:, 2]
-    fit = metamodel.fit_quadratic(x, y)
-    parts = metamodel.quadratic_parts(fit)
+    fit = quadratic.fit_quadratic(x, y)
+    parts = quadratic.quadratic_parts(fit)
     np.testing.assert_allclose(parts["b0"], 5.0, atol=1e-6)
     np.testing.assert_allclose(parts["S"], s, rtol=1e-9, atol=1e-6)
     names = fit["names"][7:]
     np.testing.assert_allclose(parts["second"][names.index("t0^2"), 0], 0.5, rtol=1e-9)
     np.testing.assert_allclose(parts["second"][names.index("t1*t2"), 1], 0.2, rtol=1e-9)
-    ratio = metamodel.second_order_ratio(fit)
+    ratio = quadratic.second_order_ratio(fit)
     assert ratio[0] == pytest.approx(0.5 / np.abs(s[0]).max(), rel=1e-9)
     assert ratio[2:].max() < 1e-9  # the other outputs are linear
 
@@ -103,11 +101,11 @@ def test_quadratic_parts_recover_a_known_second_order_model() -> None:
 def test_predict_and_surrogate_errors_know_every_fit() -> None:
     x, s, y = _linear_data()
     fits = {
-        "exact": metamodel.fit_linear(x, y),
-        "quadratic": metamodel.fit_quadratic(x, y),
+        "exact": linear.fit_linear(x, y),
+        "quadratic": quadratic.fit_quadratic(x, y),
         "twice": {"S": 2 * s},  # predicts 2y: its error is |y|, 100 % of the range
     }
-    errors = metamodel.surrogate_errors(fits, {"train": (x, y), "half": (x[:10], y[:10])})
+    errors = metrics.surrogate_errors(fits, {"train": (x, y), "half": (x[:10], y[:10])})
     assert list(errors) == [
         ("exact", "train"),
         ("exact", "half"),
@@ -118,19 +116,19 @@ def test_predict_and_surrogate_errors_know_every_fit() -> None:
     ]
     assert errors[("exact", "half")].max() < 1e-9 and errors[("quadratic", "train")].max() < 1e-8
     np.testing.assert_allclose(errors[("twice", "train")], 100.0)
-    with pytest.raises(TypeError, match="result of a fit_"):
-        metamodel.predict({"weights": s}, x)
+    with pytest.raises(TypeError, match="result of fit_linear"):
+        metrics.predict_fit({"weights": s}, x)
     with pytest.raises(ValueError, match="metric must be one of"):
-        metamodel.surrogate_errors(fits, {"train": (x, y)}, metric="mape")
+        metrics.surrogate_errors(fits, {"train": (x, y)}, metric="mape")
 
 
 def test_round_trip_and_row_relative_errors_by_hand() -> None:
     s = pub.EQ8_ST
-    poses = metamodel.predict_linear(s, np.eye(6))
-    inv = metamodel.inverse(s)["S_inv"]
-    assert metamodel.round_trip_error(s, inv, poses) < 1e-12
-    assert metamodel.round_trip_error(s, 1.01 * inv, poses) == pytest.approx(0.01, rel=1e-9)
-    dev = metamodel.relative_to_rows([[1.0, 2.5], [0.0, 10.0]], [[1.0, 2.0], [1.0, 10.0]])
+    poses = linear.predict_linear(s, np.eye(6))
+    inv = linear.inverse(s)["S_inv"]
+    assert linear.round_trip_error(s, inv, poses) < 1e-12
+    assert linear.round_trip_error(s, 1.01 * inv, poses) == pytest.approx(0.01, rel=1e-9)
+    dev = linear.relative_to_rows([[1.0, 2.5], [0.0, 10.0]], [[1.0, 2.0], [1.0, 10.0]])
     np.testing.assert_allclose(dev, [[0.0, 0.25], [0.1, 0.0]])
 
 
@@ -146,14 +144,14 @@ def test_fit_quadratic_recovers_a_known_quadratic_exactly_on_table4() -> None:
     # quadratic of the forces is recovered term by term, and predicted exactly anywhere
     y, coef = _quadratic_truth(pub.TABLE4_DESIGN)
     responses = np.column_stack([y, 10 * y])
-    fit = metamodel.fit_quadratic(pub.TABLE4_DESIGN, responses)
+    fit = quadratic.fit_quadratic(pub.TABLE4_DESIGN, responses)
     expected = np.array([coef.get(name, 0.0) for name in fit["names"]])
     np.testing.assert_allclose(fit["coef"][:, 0], expected, rtol=0, atol=1e-10)
     np.testing.assert_allclose(fit["coef"][:, 1], 10 * expected, rtol=0, atol=1e-9)
     assert np.abs(fit["residuals"]).max() < 1e-10
     fresh = np.random.default_rng(5).uniform(-1, 1, (50, 6))
     np.testing.assert_allclose(
-        metamodel.predict_quadratic(fit["coef"], fresh)[:, 0],
+        quadratic.predict_quadratic(fit["coef"], fresh)[:, 0],
         _quadratic_truth(fresh)[0],
         rtol=0,
         atol=1e-10,
@@ -162,7 +160,7 @@ def test_fit_quadratic_recovers_a_known_quadratic_exactly_on_table4() -> None:
 
 def test_fit_quadratic_needs_as_many_runs_as_coefficients() -> None:
     with pytest.raises(ValueError, match="at least 28 runs for the quadratic model, got 27"):
-        metamodel.fit_quadratic(pub.TABLE4_DESIGN[:27], np.zeros((27, 1)))
+        quadratic.fit_quadratic(pub.TABLE4_DESIGN[:27], np.zeros((27, 1)))
 
 
 def _smooth(x: np.ndarray) -> np.ndarray:
@@ -175,18 +173,18 @@ def _smooth(x: np.ndarray) -> np.ndarray:
 def test_fit_gp_interpolates_its_runs_and_recovers_a_linear_response() -> None:
     x = pub.TABLE4_DESIGN[:, :3]
     y = _smooth(x)
-    gp = metamodel.fit_gp(x, y, seed=0)
+    gp = gaussian_process.fit_gp(x, y, seed=0)
     scale = y.std(axis=0)
     # a GP with a (fitted, near-zero) white-noise term nearly interpolates its training runs
-    at_runs = np.abs(metamodel.predict_gp(gp, x) - y).max(axis=0) / scale
+    at_runs = np.abs(gaussian_process.predict_gp(gp, x) - y).max(axis=0) / scale
     assert np.all(at_runs < 1e-2)
     # a linear response is reproduced away from the runs too (infinite length scales)
     fresh = np.random.default_rng(5).uniform(-1, 1, (200, 3))
-    off_runs = np.abs(metamodel.predict_gp(gp, fresh) - _smooth(fresh)).max(axis=0) / scale
+    off_runs = np.abs(gaussian_process.predict_gp(gp, fresh) - _smooth(fresh)).max(axis=0) / scale
     assert off_runs[1] < 1e-3
     # the same seed gives the same models (on this data an unseeded optimiser would too: the
     # restarts end on the same optimum, so this guards reproducibility, not the use of the seed)
-    again = metamodel.fit_gp(x, y, seed=0)
+    again = gaussian_process.fit_gp(x, y, seed=0)
     np.testing.assert_array_equal(
-        metamodel.predict_gp(again, fresh), metamodel.predict_gp(gp, fresh)
+        gaussian_process.predict_gp(again, fresh), gaussian_process.predict_gp(gp, fresh)
     )

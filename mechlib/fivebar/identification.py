@@ -2,7 +2,8 @@
 
 For leg κ and measured end-effector points ``P̂`` and joint readings ``ψ̂``, the residual is
 ``ΔQ = ψ̂ − gκ(P̂; φκ)`` and the identification Jacobian is ``Cκ = ∂gκ/∂φκ`` (Eq 17), computed
-analytically by implicit differentiation of the loop equation (Eq 23).
+analytically by implicit differentiation of the loop equation (Eq 23) in the RR dyad's
+:func:`mechlib.mechanisms.dyad.jacobian`.
 
 *Divide and conquer* identifies each leg from its own posture set. The *traditional* method
 identifies all twelve parameters from one posture set; because leg κ's reading depends only on
@@ -19,12 +20,14 @@ from scipy.optimize import least_squares
 from mechlib.fivebar.kinematics import (
     PARAM_NAMES,
     SINGULAR_TOL,
-    active_angle,
     check_leg,
+    check_mode,
+    check_points,
     check_regular,
     forward,
     joint_reading,
 )
+from mechlib.mechanisms import dyad
 from mechlib.params import check_float, check_int
 
 RANK_TOL = 1e-9
@@ -32,34 +35,28 @@ RANK_TOL = 1e-9
 
 
 def identification_jacobian(points: object, phi: object, mode: int) -> np.ndarray:
-    """Analytic ``C = ∂ψ/∂φ`` of one leg at end-effector points (Eq 17), shape (n, 6).
+    """Analytic ``C = ∂ψ/∂φ`` of one leg at end-effector points (Eq 17), shape (n, 6):
+    :func:`mechlib.mechanisms.dyad.jacobian` on checked input, refusing serial singularities.
 
-    With ``u = x − l cos θ − Ax``, ``v = y − l sin θ − Ay`` and ``F = u² + v² − L² = 0``:
-    ``dθ/dp = −F_p / F_θ``, ``F_θ = 2 l (u sin θ − v cos θ)``, ``F_l = −2 (u cos θ + v sin θ)``,
-    ``F_L = −2 L``, ``F_Ax = −2 u``, ``F_Ay = −2 v``; then ``ψ = (θ − γ)/k`` gives
-    ``∂ψ/∂p = (dθ/dp)/k``, ``∂ψ/∂k = −(θ − γ)/k²`` and ``∂ψ/∂γ = −1/k``.
+    Parameters
+    ----------
+    points, phi, mode
+        End-effector points (n, 2) or (2,), leg parameters (Eq 21) and working mode (±1), as
+        for :func:`mechlib.fivebar.kinematics.joint_reading`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 6)
+
+    Raises
+    ------
+    ValueError
+        Invalid input, a point out of reach, or one at a serial singularity (|sine| below
+        :data:`mechlib.fivebar.kinematics.SINGULAR_TOL`: the Jacobian is unbounded there).
     """
     phi = check_leg(phi)
-    p = np.atleast_2d(np.asarray(points, dtype=float))
-    l, L, ax, ay, k, _ = phi
-    theta = active_angle(p, phi, mode)
-    u = p[:, 0] - l * np.cos(theta) - ax
-    v = p[:, 1] - l * np.sin(theta) - ay
-    f_theta = 2 * l * (u * np.sin(theta) - v * np.cos(theta))
-    sine = f_theta / (2 * l * L)
-    if np.any(np.abs(sine) < SINGULAR_TOL):
-        i = int(np.argmax(np.abs(sine) < SINGULAR_TOL))
-        raise ValueError(
-            f"point #{i} {p[i].tolist()} is at a serial singularity of the leg (stretched or "
-            f"folded, |sine| = {abs(sine[i]):.2g}): the identification Jacobian is unbounded; "
-            f"allowed |sine| >= {SINGULAR_TOL:g}"
-        )
-    f_p = np.column_stack(
-        [-2 * (u * np.cos(theta) + v * np.sin(theta)), np.full_like(u, -2 * L), -2 * u, -2 * v]
-    )
-    dtheta = -f_p / f_theta[:, None]
-    psi = joint_reading(p, phi, mode)
-    return np.column_stack([dtheta / k, -psi / k, np.full_like(u, -1.0 / k)])
+    mode = check_mode("mode", mode)
+    return dyad.jacobian(check_points(points), phi, mode, min_sine=SINGULAR_TOL)
 
 
 def check_rank(c: object, names: tuple[str, ...] = PARAM_NAMES) -> None:

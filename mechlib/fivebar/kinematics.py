@@ -8,12 +8,16 @@ proximal link ``l`` turns about the base point ``A`` by the active angle
 Modes are explicit: the *working mode* ``σκ = ±1`` of a leg picks the elbow side
 (``θ = atan2(P − A) + σ acos(…)``: +1 puts the elbow counter-clockwise of the line A→P);
 the *assembly mode* ``±1`` picks the side of the line B1→B2 on which P lies (+1: to its left).
+
+A leg is the RR dyad of :mod:`mechlib.mechanisms.dyad`, whose formulas (reach, active angle,
+reading, identification Jacobian) this chapter calls after checking its input.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from mechlib.mechanisms import dyad
 from mechlib.params import check_choice, check_float, check_matrix
 
 PARAM_NAMES: tuple[str, ...] = ("l", "L", "Ax", "Ay", "k", "gamma")
@@ -23,9 +27,6 @@ NOMINAL_MODES: tuple[int, int] = (1, -1)
 """Working modes of legs 1 and 2 for the thesis's mechanism: both elbows outward (Fig 10)."""
 NOMINAL_ASSEMBLY = 1
 """End-effector above the elbows (Fig 10)."""
-REACH_TOL = 1e-12
-"""Round-off slack of the reach tests: |cos| <= 1 + slack in the inverse kinematics (a leg reaches
-a point) and h² >= −slack in the forward kinematics (the distal links close the loop)."""
 SINGULAR_TOL = 1e-6
 """Smallest |sine| of a link angle (see :func:`singularity_measures`) accepted as a regular pose:
 :func:`check_regular`'s default, and the serial-singularity guard of the identification
@@ -66,26 +67,22 @@ def check_leg(phi: object, name: str = "phi") -> np.ndarray:
     return p
 
 
-def _points(points: object) -> np.ndarray:
+def check_points(points: object) -> np.ndarray:
+    """End-effector points as a float array (n, 2); one point (2,) becomes (1, 2)."""
     p = np.asarray(points, dtype=float)
     return check_matrix("points", p[None, :] if p.ndim == 1 else p, shape=(None, 2))
 
 
-def _mode(name: str, mode: object) -> int:
+def check_mode(name: str, mode: object) -> int:
+    """A working or assembly mode: 1 or -1."""
     return int(check_choice(name, mode, (1, -1)))
 
 
-def reach_cosine(points: object, phi: object) -> np.ndarray:
-    """``cos`` of the angle at A between A→P and A→B; a leg reaches P iff ``|value| <= 1``."""
-    p, phi = _points(points), check_leg(phi)
-    l, L, ax, ay = phi[:4]
-    rho = np.hypot(p[:, 0] - ax, p[:, 1] - ay)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (rho**2 + l**2 - L**2) / (2 * l * rho)
+def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
+    """Joint reading ψ = (θ − γ)/k of one leg for end-effector points (the function gκ, Eq 13):
+    :func:`mechlib.mechanisms.dyad.reading` on checked input.
 
-
-def active_angle(points: object, phi: object, mode: int) -> np.ndarray:
-    """Active joint angle θ of one leg for end-effector points (inverse kinematics, Eq 23).
+    θ is wrapped to the branch nearest the offset γ so that ψ is continuous over the workspace.
 
     Parameters
     ----------
@@ -95,35 +92,18 @@ def active_angle(points: object, phi: object, mode: int) -> np.ndarray:
     mode : {1, -1}
         Working mode.
 
+    Returns
+    -------
+    numpy.ndarray, shape (n,)
+
     Raises
     ------
     ValueError
-        If a point is outside the leg's reach (the offending point is named).
-    """
-    mode = _mode("mode", mode)
-    p, phi = _points(points), check_leg(phi)
-    c = reach_cosine(p, phi)
-    bad = ~(np.abs(c) <= 1 + REACH_TOL)
-    if np.any(bad):
-        i = int(np.argmax(bad))
-        raise ValueError(
-            f"point {p[i].tolist()} is outside the workspace of the leg based at "
-            f"({phi[2]:g}, {phi[3]:g}): its distance must lie in "
-            f"[|L - l|, l + L] = [{abs(phi[1] - phi[0]):g}, {phi[0] + phi[1]:g}]"
-        )
-    base = np.arctan2(p[:, 1] - phi[3], p[:, 0] - phi[2])
-    return base + mode * np.arccos(np.clip(c, -1.0, 1.0))
-
-
-def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
-    """Joint reading ψ = (θ − γ)/k of one leg for end-effector points (the function gκ, Eq 13).
-
-    θ is wrapped to the branch nearest the offset γ so that ψ is continuous over the workspace.
+        Invalid parameters or mode, or a point outside the leg's reach (the point is named).
     """
     phi = check_leg(phi)
-    theta = active_angle(points, phi, mode)
-    rel = np.angle(np.exp(1j * (theta - phi[5])))
-    return rel / phi[4]
+    mode = check_mode("mode", mode)
+    return dyad.reading(check_points(points), phi, mode)
 
 
 def elbow(psi: object, phi: object) -> np.ndarray:
@@ -143,7 +123,7 @@ def forward(
     ValueError
         If the distal links cannot close the loop for some reading (the index is named).
     """
-    assembly = _mode("assembly", assembly)
+    assembly = check_mode("assembly", assembly)
     phi1, phi2 = check_leg(phi1, "phi1"), check_leg(phi2, "phi2")
     b1, b2 = elbow(psi1, phi1), elbow(psi2, phi2)
     d = b2 - b1
@@ -151,7 +131,7 @@ def forward(
     r1, r2 = phi1[1], phi2[1]
     a = (dist**2 + r1**2 - r2**2) / (2 * dist)
     h2 = r1**2 - a**2
-    bad = ~(h2 >= -REACH_TOL)
+    bad = ~(h2 >= -dyad.REACH_TOL)
     if np.any(bad):
         i = int(np.argmax(bad))
         raise ValueError(f"joint readings #{i} cannot be assembled: elbows {dist[i]:g} apart")
@@ -173,12 +153,12 @@ def singularity_measures(
         (zero when a leg is stretched or folded: serial singularity); ``parallel``: sin of the
         angle between the two distal links (zero when they are aligned: parallel singularity).
     """
-    p = _points(points)
+    p = check_points(points)
     out = {}
     elbows = []
     for name, phi, mode in (("serial1", phi1, modes[0]), ("serial2", phi2, modes[1])):
         phi = check_leg(phi)
-        th = active_angle(p, phi, mode)
+        th = dyad.active_angle(p, phi, check_mode("mode", mode))
         b = np.column_stack([phi[2] + phi[0] * np.cos(th), phi[3] + phi[0] * np.sin(th)])
         pa, pb = b - phi[2:4], p - b
         out[name] = (pa[:, 0] * pb[:, 1] - pa[:, 1] * pb[:, 0]) / (phi[0] * phi[1])
@@ -201,7 +181,7 @@ def check_regular(
         parallel (distal links aligned) singularity measure has ``|sine| < min_sine``.
     """
     min_sine = check_float("min_sine", min_sine, low=0.0)
-    p = _points(points)
+    p = check_points(points)
     for name, value in singularity_measures(p, phi1, phi2, modes).items():
         bad = np.abs(value) < min_sine
         if np.any(bad):
@@ -243,7 +223,7 @@ def disc_is_regular(
     """True if every grid point of the disc is reachable and no singularity measure changes sign."""
     pts = in_circle_grid(center, radius, n_rings, n_angles)
     for phi in (phi1, phi2):
-        if np.any(np.abs(reach_cosine(pts, phi)) >= 1):
+        if np.any(np.abs(dyad.reach_cosine(pts, check_leg(phi))) >= 1):
             return False
     meas = singularity_measures(pts, phi1, phi2, modes)
     return all(np.all(m > 0) or np.all(m < 0) for m in meas.values())

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechlib.fivebar import kinematics as kin
+from mechlib.mechanisms import dyad
 from mechlib.params import check_int, check_matrix
 
 #: Default number of grid points per side of the field (Fig 10: 400 × 400, 0.16 M points).
@@ -95,7 +96,9 @@ def singularity_field(
     xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
     xx, yy = np.meshgrid(xs, ys)
     pts = np.column_stack([xx.ravel(), yy.ravel()])
-    ok = np.all([np.abs(kin.reach_cosine(pts, p)) < 1 for p in (phi1, phi2)], axis=0)
+    ok = np.all(
+        [np.abs(dyad.reach_cosine(pts, kin.check_leg(p))) < 1 for p in (phi1, phi2)], axis=0
+    )
     par = np.full(len(pts), np.nan)
     if np.any(ok):
         par[ok] = kin.singularity_measures(pts[ok], phi1, phi2, modes)["parallel"]
@@ -157,11 +160,11 @@ def leg_chain(point: object, phi: object, mode: int) -> tuple[np.ndarray, float]
         Rows A, B, P [m].
     theta : float
         Active angle θ [rad] (inverse kinematics, Eq 23), on the branch of
-        :func:`mechlib.fivebar.kinematics.active_angle`.
+        :func:`mechlib.mechanisms.dyad.active_angle`.
     """
     phi = kin.check_leg(phi)
     p = np.asarray(point, dtype=float)
-    theta = float(kin.active_angle(p, phi, mode)[0])
+    theta = float(dyad.active_angle(kin.check_points(p), phi, kin.check_mode("mode", mode))[0])
     a = phi[2:4]
     b = a + phi[0] * np.array([np.cos(theta), np.sin(theta)])
     return np.vstack([a, b, p]), theta

@@ -1,10 +1,10 @@
 """The planar 5R of the thesis (sec. 3.7) as an instance of the leg-wise calibration core.
 
 Leg κ's reading and identification Jacobian are the RR dyad's (:mod:`mechlib.mechanisms.dyad`,
-the formulas of :mod:`mechlib.fivebar.kinematics` and :mod:`mechlib.fivebar.identification`;
-Eq 21's parameters
-``[l, L, Ax, Ay, k, γ]``); forward kinematics is the closed-form circle intersection. The
-calibration region is a disc around the MIW centre (``fraction`` of its radius).
+which the 5R chapter's :mod:`mechlib.fivebar.kinematics` and :mod:`mechlib.fivebar.identification`
+call too; Eq 21's parameters ``[l, L, Ax, Ay, k, γ]``); forward kinematics is the closed-form
+circle intersection. The calibration region is a disc around the MIW centre (``fraction`` of its
+radius).
 """
 
 from __future__ import annotations

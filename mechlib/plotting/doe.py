@@ -227,7 +227,7 @@ def running_errors(
     Parameters
     ----------
     running : mapping
-        The output of :func:`mechlib.metamodel.running_error_metrics`: ``runs`` (k,) and
+        The output of :func:`mechlib.metamodels.metrics.running_error_metrics`: ``runs`` (k,) and
         ``max_rel_pct``, ``max_range_pct`` (k, responses).
     labels : sequence of str
         One legend entry per response.

@@ -81,16 +81,16 @@ FIG1 = MethodFigure(
             "Construct the surrogate (meta-)model of the kinematics",
             (("published_doe", "Eq 8"), ("virtual_experiments", "Eqs 6–9")),
             (
-                "mechlib.metamodel.fit_linear",
-                "mechlib.metamodel.fit_quadratic",
-                "mechlib.metamodel.inverse",
+                "mechlib.metamodels.linear.fit_linear",
+                "mechlib.metamodels.quadratic.fit_quadratic",
+                "mechlib.metamodels.linear.inverse",
             ),
         ),
         MethodStep(
             "Verify the meta-model's accuracy with extra experiments",
             (("virtual_experiments", "Table 5"),),
             (
-                "mechlib.metamodel.error_metrics",
+                "mechlib.metamodels.metrics.error_metrics",
                 "mechlib.hexflex.studies.linearity.linearity_sweep",
             ),
         ),

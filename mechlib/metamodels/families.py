@@ -4,29 +4,44 @@ A fitted meta-model is a :class:`Surrogate`: the family's name, the validated fo
 half-width of the training box, N) and the family's fitted state. ``predict`` refuses forces
 outside the validated range unless told to extrapolate.
 
-Families
---------
-``linear``
-    ``S_T`` of Eq 7 (least squares, no intercept): :func:`mechlib.metamodel.fit_linear`.
-``quadratic``
-    Eq 6, second order with interactions and intercept: :func:`mechlib.metamodel.fit_quadratic`.
-``cubic``
-    Every monomial of total degree ≤ 3 (84 terms for six forces), least squares on the forces
-    divided by the validated range.
-``gp``
-    Gaussian process (Kriging) per output from scikit-learn on the residual of a linear trend
-    (regression Kriging): see :mod:`mechlib.surrogates` for the measurement behind the choice.
-``pce``
-    Sparse polynomial chaos: a Legendre basis (orthonormal for uniform forces on the validated
-    range, :mod:`numpy.polynomial.legendre`) of total degree ≤ ``PCE_DEGREE``; per output,
-    scikit-learn's ``LassoLarsCV`` (least-angle regression stopped by seeded k-fold
-    cross-validation) selects the terms — those that entered its path up to the chosen
-    penalty — and least squares fits them (hybrid LARS, as OpenTURNS's
-    ``LeastSquaresMetaModelSelection``), unless they are as many as the runs (then LARS's own
-    coefficients are kept). Degree 4 or 5 was measured worse below 300 runs.
+Families (``FAMILIES``): ``linear``, S_T of Eq 7 (least squares, no intercept,
+:func:`.linear.fit_linear`); ``quadratic``, Eq 6 (second order with interactions and intercept,
+:func:`.quadratic.fit_quadratic`); ``cubic``, every monomial of total degree ≤ 3 (84 terms for
+six forces), least squares on the forces divided by the validated range; ``gp``, a Gaussian
+process (Kriging) per output from scikit-learn on the residual of a linear trend (regression
+Kriging); ``pce``, sparse polynomial chaos: a Legendre basis (orthonormal for uniform forces on
+the validated range) of total degree ≤ ``PCE_DEGREE``, whose terms scikit-learn's
+``LassoLarsCV`` (LARS stopped by seeded k-fold cross-validation) selects per output — those that
+entered its path up to the chosen penalty — and least squares fits (hybrid LARS, as OpenTURNS's
+``LeastSquaresMetaModelSelection``), unless they are as many as the runs (then LARS's own
+coefficients are kept); degree 4 or 5 was measured worse below 300 runs.
 
-A model that is not fitted here — a physics-based reduced-order model, say — joins the same
-scoring, timing and inversion as family ``PHYSICS`` through :func:`wrap_model`.
+A model not fitted here (a physics-based reduced-order model) joins the scoring, timing and
+inversion as family ``PHYSICS`` through :func:`wrap_model`.
+
+Libraries: scikit-learn's GP and LARS (already locked), chosen by measurement against SMT 2.15,
+OpenTURNS 1.27 and chaospy 4.3 (a one-off script, not kept in the repository): Eq 8's S_T with
+2 % on every entry plus ~3 % quadratic, ~1 % cubic and a 1 % sine term; LHS random-cd training
+of 30 / 100 / 300 runs, 1000 uniform validation runs; worst max |error| as % of range; times on
+a shared, loaded 2-core machine, one BLAS thread (compare them only as ratios); µs per pose
+batched for the GPs, for one pose for the PCEs (total degree 3):
+
+=========================================  ====================  ==================  ==============
+model                                      error % (30/100/300)  fit s (30/100/300)  µs/pose
+=========================================  ====================  ==================  ==============
+sklearn GP on a linear trend (``gp``)      2.6 / 0.56 / 0.089    0.4 / 1.9 / 82      3 / 16 / 44
+sklearn GP, constant mean                  2.5 / 2.7 / 0.23      1.6 / 5.9 / 66      7 / 23 / 101
+OpenTURNS GP, linear basis                 3.1 / 0.69 / 0.11     1.3 / 3.5 / 27      41 / 156 / 137
+SMT KRG, linear trend                      4.1 / 0.96 / —        19 / 29 / > 600     15 / 83 / —
+SMT KRG, constant trend                    5.0 / 3.1 / 0.37      46 / 42 / 538       88 / 84 / 515
+Legendre + sklearn LassoLarsCV (``pce``)   1.9 / 3.2 / 1.7       0.5 / 0.6 / 0.4     66 – 165
+chaospy + sklearn LarsCV                   3.1 / 1.0 / 1.4       2.5 / 2.0 / 2.4     94k – 207k
+OpenTURNS FunctionalChaos, LARS + LOO      4.4 / 4.3 / 1.7       4.9 / 0.5 / 6.8     380 – 3600
+=========================================  ====================  ==================  ==============
+
+For reference: ``linear`` 2.8 / 3.0 / 2.7, ``quadratic`` 7.4 / 2.7 / 2.8, ``cubic`` — / 3.3 / 1.8.
+No other library was clearly better (OpenTURNS's GP is close to scikit-learn's, slower to
+predict; chaospy's PCE is better at 100 runs, worse at 30, a thousand times slower per pose).
 """
 
 from __future__ import annotations
@@ -40,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from mechlib import metamodel
+from mechlib.metamodels import linear, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 FAMILIES = ("linear", "quadratic", "cubic", "gp", "pce")
@@ -159,7 +174,7 @@ def _fit_gp(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
     from sklearn.gaussian_process import GaussianProcessRegressor
     from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
 
-    trend = metamodel.fit_linear(u, y, intercept=True)
+    trend = linear.fit_linear(u, y, intercept=True)
     models = []
     for j in range(y.shape[1]):
         kernel = ConstantKernel(1.0) * RBF(np.ones(u.shape[1]), GP_LENGTH_BOUNDS) + WhiteKernel(
@@ -250,9 +265,9 @@ def fit_surrogate(
     u = x / amplitude
     with threadpool_limits(limits=1, user_api="blas"):  # same digits with any BLAS threads
         if family == "linear":
-            state = {"S": metamodel.fit_linear(x, y)["S"]}
+            state = {"S": linear.fit_linear(x, y)["S"]}
         elif family == "quadratic":
-            state = {"coef": metamodel.fit_quadratic(x, y)["coef"]}
+            state = {"coef": quadratic.fit_quadratic(x, y)["coef"]}
         elif family == "cubic":
             exps = _exponents(x.shape[1], CUBIC_DEGREE)
             coef, *_ = np.linalg.lstsq(_monomials(u, exps), y, rcond=None)
@@ -348,7 +363,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
     if surrogate.family == "linear":
         return x @ s["S"].T
     if surrogate.family == "quadratic":
-        return metamodel.quadratic_features(x)[0] @ s["coef"]
+        return quadratic.quadratic_features(x)[0] @ s["coef"]
     if surrogate.family == "cubic":
         return _monomials(u, s["exponents"]) @ s["coef"]
     if surrogate.family == "gp":

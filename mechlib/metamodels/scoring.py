@@ -9,9 +9,7 @@ import numpy as np
 from sklearn.model_selection import KFold
 from threadpoolctl import threadpool_limits
 
-from mechlib import metamodel
-from mechlib.params import check_choice, check_int, check_matrix
-from mechlib.surrogates.families import (
+from mechlib.metamodels.families import (
     FAMILIES,
     Surrogate,
     check_forces,
@@ -20,6 +18,8 @@ from mechlib.surrogates.families import (
     predict,
     predict_array,
 )
+from mechlib.metamodels.metrics import error_metrics
+from mechlib.params import check_choice, check_int, check_matrix
 
 CV_FOLDS = 5
 """Default number of folds of :func:`cross_validate`."""
@@ -43,7 +43,7 @@ def score(surrogate: Surrogate, forces: object, poses: object) -> dict[str, np.n
     Returns
     -------
     dict
-        The arrays (outputs,) of :func:`mechlib.metamodel.error_metrics` — ``max_range_pct``
+        The arrays (outputs,) of :func:`.metrics.error_metrics` — ``max_range_pct``
         (max |error| as % of the component's largest |value| over the set, Table 5's
         convention), ``maxabs`` (Eq 10), ``rmse`` (Eq 11), ``max_rel_pct`` — and ``worst_pct``,
         the largest ``max_range_pct`` over the components (a float).
@@ -55,7 +55,7 @@ def score(surrogate: Surrogate, forces: object, poses: object) -> dict[str, np.n
     """
     x = check_forces(surrogate, forces)
     y = check_matrix("poses", poses, shape=(x.shape[0], surrogate.n_outputs))
-    out = metamodel.error_metrics(y, predict(surrogate, x))
+    out = error_metrics(y, predict(surrogate, x))
     out["worst_pct"] = float(out["max_range_pct"].max())
     return out
 
@@ -78,7 +78,7 @@ def cross_validate(
     Parameters
     ----------
     family : str
-        One of :data:`mechlib.surrogates.families.FAMILIES`.
+        One of :data:`mechlib.metamodels.families.FAMILIES`.
     forces, poses : array_like, shapes (runs, inputs), (runs, outputs)
     folds : int
         Number of folds, 2 to runs.
@@ -95,7 +95,7 @@ def cross_validate(
     Raises
     ------
     ValueError
-        As :func:`mechlib.surrogates.families.fit_surrogate` (a fold's training runs must be at
+        As :func:`mechlib.metamodels.families.fit_surrogate` (a fold's training runs must be at
         least the family's number of terms), or ``folds`` out of range.
     """
     x = check_matrix("forces", forces)
@@ -106,7 +106,7 @@ def cross_validate(
     for train, test in KFold(folds, shuffle=True, random_state=seed).split(x):
         fit = fit_surrogate(family, x[train], y[train], amplitude=amplitude, seed=seed)
         predicted[test] = predict(fit, x[test])
-    out = metamodel.error_metrics(y, predicted)
+    out = error_metrics(y, predicted)
     out["worst_pct"] = float(out["max_range_pct"].max())
     out["predicted"] = predicted
     return out
@@ -213,7 +213,7 @@ def compare_families(
     Raises
     ------
     ValueError
-        As :func:`~mechlib.surrogates.families.fit_surrogate`, :func:`score` and
+        As :func:`~mechlib.metamodels.families.fit_surrogate`, :func:`score` and
         :func:`cross_validate`.
     """
     fams = [check_choice("families", f, FAMILIES) for f in families]

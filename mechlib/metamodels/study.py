@@ -1,6 +1,6 @@
-"""Comparisons built on the scoring functions: the force range each model keeps within an error
-budget, and the inverse checked against the truth (the meta-model page's budget and control
-sections)."""
+"""Studies built on the scoring functions (the meta-model page's learning-curve, budget and
+control sections): error against the number of training runs, the force range each model keeps
+within an error budget, and the inverse's forces checked against the truth."""
 
 from __future__ import annotations
 
@@ -8,10 +8,72 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from mechlib.params import check_float, check_matrix
-from mechlib.surrogates.families import Surrogate
-from mechlib.surrogates.inverse import invert
-from mechlib.surrogates.scoring import score
+from mechlib.metamodels.families import FAMILIES, Surrogate, fit_surrogate, n_terms
+from mechlib.metamodels.inverse import invert
+from mechlib.metamodels.scoring import score
+from mechlib.params import check_choice, check_float, check_int, check_matrix
+
+
+def learning_curve(
+    families: Sequence[str],
+    forces: object,
+    poses: object,
+    val_forces: object,
+    val_poses: object,
+    sizes: Sequence[int],
+    *,
+    amplitude: float,
+    seed: int = 0,
+) -> dict[str, object]:
+    """Validation error against the number of training runs: nested subsets (the first n runs).
+
+    Parameters
+    ----------
+    families : sequence of str
+        Names from ``FAMILIES``.
+    forces, poses : array_like, shapes (runs, inputs), (runs, outputs)
+        One training design (e.g. :func:`.designs.sobol_design`) and its poses; the first ``n``
+        rows are the subset of size ``n``, so the subsets are nested.
+    val_forces, val_poses : array_like
+        Held-out runs, inside the validated range.
+    sizes : sequence of int
+        Training sizes, increasing, each at most the runs available.
+    amplitude : float
+        Validated range [N] of every fit (the design's half-width).
+    seed : int
+        Passed to :func:`fit_surrogate`.
+
+    Returns
+    -------
+    dict
+        ``sizes`` (m,); ``families`` list; ``max_range_pct`` and ``rmse`` (families, m,
+        outputs) and ``worst_pct`` (families, m): NaN where a size is below the family's
+        :func:`n_terms`.
+
+    Raises
+    ------
+    ValueError
+        Unknown family, a size larger than the runs available or not increasing, shapes.
+    """
+    x = check_matrix("forces", forces)
+    y = check_matrix("poses", poses, shape=(x.shape[0], None))
+    fams = [check_choice("families", f, FAMILIES) for f in families]
+    n = np.array([check_int("sizes", s, low=1, high=len(x)) for s in sizes])
+    if n.size == 0 or np.any(np.diff(n) <= 0):
+        raise ValueError(f"sizes must be increasing, got {n.tolist()}")
+    shape = (len(fams), len(n), y.shape[1])
+    out = {"max_range_pct": np.full(shape, np.nan), "rmse": np.full(shape, np.nan)}
+    for i, fam in enumerate(fams):
+        for j, size in enumerate(n):
+            if size < n_terms(fam, x.shape[1]):
+                continue
+            fit = fit_surrogate(fam, x[:size], y[:size], amplitude=amplitude, seed=seed)
+            s = score(fit, val_forces, val_poses)
+            out["max_range_pct"][i, j] = s["max_range_pct"]
+            out["rmse"][i, j] = s["rmse"]
+    with np.errstate(all="ignore"):
+        worst = np.max(out["max_range_pct"], axis=2)
+    return {"sizes": n, "families": fams, "worst_pct": worst, **out}
 
 
 def budget_ranges(

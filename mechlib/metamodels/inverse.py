@@ -7,14 +7,11 @@ linear inverse ``τ₀ = J(0)⁻¹ (ψ − f(0))`` — Eq 9 when the meta-model 
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from mechlib import metamodel
+from mechlib.metamodels.families import Surrogate, predict_array
 from mechlib.params import check_float, check_int, check_matrix
-from mechlib.surrogates.families import Surrogate, check_forces, predict_array
 
 NEWTON_TOL = 1e-10
 """Convergence: max |f(τ) − ψ| of every component, relative to the component's linear scale;
@@ -144,53 +141,3 @@ def invert(
         "converged": res <= tol,
         "start": start,
     }
-
-
-def round_trip_error(surrogate: Surrogate, poses: object) -> np.ndarray:
-    """Pose → forces (:func:`invert`) → meta-model pose: max |ψ̂ − ψ| / max |ψ| per component.
-
-    Returns
-    -------
-    numpy.ndarray, shape (outputs,)
-
-    Raises
-    ------
-    ValueError
-        As :func:`invert`.
-    """
-    psi = check_matrix("poses", poses, shape=(None, surrogate.n_outputs))
-    forces = invert(surrogate, psi)["forces"]
-    with threadpool_limits(limits=1, user_api="blas"):
-        back = predict_array(surrogate, check_forces(surrogate, forces))
-    return np.abs(back - psi).max(axis=0) / np.abs(psi).max(axis=0)
-
-
-def compare_with_truth(
-    surrogate: Surrogate, poses: object, truth: Callable[[np.ndarray], np.ndarray]
-) -> dict[str, object]:
-    """Drive the "truth" (e.g. the FE model) with the meta-model's inverse forces.
-
-    Parameters
-    ----------
-    surrogate : Surrogate
-    poses : array_like, shape (runs, outputs)
-        Desired poses.
-    truth : callable
-        ``truth(forces (runs, inputs)) -> poses (runs, outputs)``, the reference forward model.
-
-    Returns
-    -------
-    dict
-        ``forces`` the inverse's forces; ``reached`` the truth's poses for them; and the
-        :func:`mechlib.metamodel.error_metrics` of ``reached`` against the desired poses
-        (``max_range_pct`` … per component).
-
-    Raises
-    ------
-    ValueError
-        As :func:`invert`, or a truth returning the wrong shape.
-    """
-    psi = check_matrix("poses", poses, shape=(None, surrogate.n_outputs))
-    forces = invert(surrogate, psi)["forces"]
-    reached = check_matrix("truth(forces)", truth(forces), shape=psi.shape)
-    return {"forces": forces, "reached": reached, **metamodel.error_metrics(psi, reached)}
