@@ -4,6 +4,7 @@ budgets, the Monte Carlo and the refusals of bad input."""
 import numpy as np
 import pytest
 
+from mechlib import dyad
 from mechlib.calibration import cost
 from mechlib.calibration import identify as ci
 from mechlib.calibration import mechanism as cm
@@ -12,7 +13,7 @@ from mechlib.calibration import study as st
 from mechlib.fivebar import identification as idf
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import study as fst
-from mechlib.mechanisms import dyad, fivebar5r
+from mechlib.mechanisms import fivebar5r
 
 MECH = fivebar5r.mechanism(0.8)
 REAL = fivebar5r.real_parameters()

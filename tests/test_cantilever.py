@@ -12,13 +12,8 @@ from scipy.integrate import solve_bvp
 
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.svk_tangent import SVKTangent
-from mechlib.hexflex.studies.cantilever import (
-    ELASTICA_TOL,
-    MAX_ALPHA,
-    Cantilever,
-    box_hexahedra,
-    elastica_tip,
-)
+from mechlib.hexflex.studies.cantilever import ELASTICA_TOL, Cantilever, box_hexahedra
+from mechlib.hexflex.studies.elastica import MAX_ALPHA, elastica_tip
 
 #: Mattiasson (1981), "Numerical results from large deflection beam and frame problems analysed
 #: by means of elliptic integrals", Int. J. Numer. Meth. Eng. 17(1) 145–153, the cantilever under

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
+from mechlib import dyad
 from mechlib import published as pub
 from mechlib.fivebar import kinematics as kin
 from mechlib.fivebar import workspace as ws
-from mechlib.mechanisms import dyad
 
 PHI1 = kin.leg_vector(pub.TABLE7_NOMINAL, 1)
 PHI2 = kin.leg_vector(pub.TABLE7_NOMINAL, 2)

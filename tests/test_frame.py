@@ -6,6 +6,7 @@ import pytest
 from mechlib import published as pub
 from mechlib.hexflex import checks
 from mechlib.hexflex import frame as fr
+from mechlib.hexflex import frame_solver as fs
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import identify as ident
 
@@ -14,21 +15,21 @@ G = E / (2 * (1 + NU))
 B, T = 0.4, 1.1  # section width (in plane) and depth (along z) [mm]
 A = B * T
 I_IN, I_OUT = T * B**3 / 12, B * T**3 / 12  # in-plane and out-of-plane bending inertias
-KGA = fr.SHEAR_FACTOR * G * A
+KGA = fs.SHEAR_FACTOR * G * A
 TIGHT = 1e-10
 HINT = geo.HexFlexGeometry()  # ρ 22, R_t 45, s₀ 3, t 0.505, widths 0.276, L₁ 11.72, L₂ 3.95
 FREE5 = ("thickness", "beam_width", "radial_width", "beam_length", "radial_length")
 
 
-def cantilever(length: float, n: int, angle: float = 0.0) -> fr.Frame:
+def cantilever(length: float, n: int, angle: float = 0.0) -> fs.Frame:
     """Clamped at the origin, ``n`` elements along the in-plane direction ``angle`` [rad]."""
     axis = np.array([np.cos(angle), np.sin(angle), 0.0])
     nodes = np.linspace(0, length, n + 1)[:, None] * axis
     elements = np.c_[np.arange(n), np.arange(1, n + 1)]
-    return fr.Frame(nodes, elements, np.full(n, B), np.full(n, T), clamped=(0,))
+    return fs.Frame(nodes, elements, np.full(n, B), np.full(n, T), clamped=(0,))
 
 
-def tip_load(frame: fr.Frame, node: int, load: list[float]) -> np.ndarray:
+def tip_load(frame: fs.Frame, node: int, load: list[float]) -> np.ndarray:
     f = np.zeros((len(frame.nodes), 6))
     f[node] = load
     return f
@@ -42,7 +43,7 @@ def test_cantilever_tip_deflection_and_rotation_in_both_planes(n: int, shear: bo
     for load, dof, rot_dof, inertia, rot_sign in ((1, 1, 5, I_IN, 1), (2, 2, 4, I_OUT, -1)):
         f = np.zeros(6)
         f[load] = P
-        u = fr.solve_frame(frame, E, NU, tip_load(frame, n, f), shear=shear)[n]
+        u = fs.solve_frame(frame, E, NU, tip_load(frame, n, f), shear=shear)[n]
         expected = P * L**3 / (3 * E * inertia) + (P * L / KGA if shear else 0.0)
         assert u[dof] == pytest.approx(expected, rel=TIGHT)
         # θz = +v', θy = −w' (right-handed rotations)
@@ -53,7 +54,7 @@ def test_cantilever_along_an_oblique_axis_bends_like_one_along_x() -> None:
     L, angle = 5.0, np.deg2rad(37.0)
     frame = cantilever(L, 2, angle)
     normal = np.array([-np.sin(angle), np.cos(angle)])
-    u = fr.solve_frame(frame, E, NU, tip_load(frame, 2, [*normal, 0, 0, 0, 0]), shear=False)[2]
+    u = fs.solve_frame(frame, E, NU, tip_load(frame, 2, [*normal, 0, 0, 0, 0]), shear=False)[2]
     assert u[:2] @ normal == pytest.approx(L**3 / (3 * E * I_IN), rel=TIGHT)
     assert u[:2] @ [np.cos(angle), np.sin(angle)] == pytest.approx(0.0, abs=1e-14)
 
@@ -61,8 +62,8 @@ def test_cantilever_along_an_oblique_axis_bends_like_one_along_x() -> None:
 def test_torsion_tip_twist_is_tl_over_gj() -> None:
     L, M = 6.0, 0.8
     frame = cantilever(L, 2)
-    u = fr.solve_frame(frame, E, NU, tip_load(frame, 2, [0, 0, 0, M, 0, 0]))[2]
-    assert u[3] == pytest.approx(M * L / (G * fr.torsion_constant(B, T)), rel=TIGHT)
+    u = fs.solve_frame(frame, E, NU, tip_load(frame, 2, [0, 0, 0, M, 0, 0]))[2]
+    assert u[3] == pytest.approx(M * L / (G * fs.torsion_constant(B, T)), rel=TIGHT)
     assert np.abs(u[[0, 1, 2, 4, 5]]).max() < 1e-14
 
 
@@ -76,8 +77,8 @@ def test_roark_torsion_constant_against_saint_venant_series(ratio: float) -> Non
         / 3
         * (1 - 192 / np.pi**5 * (b / a) * np.sum(np.tanh(k * np.pi * a / (2 * b)) / k**5))
     )
-    assert fr.torsion_constant(a, b) == pytest.approx(series, rel=2.5e-3)  # Roark: ≤ 0.2 % here
-    assert fr.torsion_constant(b, a) == fr.torsion_constant(a, b)
+    assert fs.torsion_constant(a, b) == pytest.approx(series, rel=2.5e-3)  # Roark: ≤ 0.2 % here
+    assert fs.torsion_constant(b, a) == fs.torsion_constant(a, b)
 
 
 @pytest.mark.parametrize("shear", [False, True])
@@ -85,20 +86,20 @@ def test_l_frame_out_of_plane_load_matches_castigliano(shear: bool) -> None:
     # leg 1 clamped at the origin along x (length a), leg 2 along y (length b), load P along z
     a, b, P = 8.0, 5.0, 1.7
     nodes = np.array([[0, 0, 0], [a, 0, 0], [a, b, 0]], dtype=float)
-    frame = fr.Frame(nodes, np.array([[0, 1], [1, 2]]), np.full(2, B), np.full(2, T), clamped=(0,))
-    w = fr.solve_frame(frame, E, NU, tip_load(frame, 2, [0, 0, P, 0, 0, 0]), shear=shear)[2, 2]
+    frame = fs.Frame(nodes, np.array([[0, 1], [1, 2]]), np.full(2, B), np.full(2, T), clamped=(0,))
+    w = fs.solve_frame(frame, E, NU, tip_load(frame, 2, [0, 0, P, 0, 0, 0]), shear=shear)[2, 2]
     bending = P * (a**3 + b**3) / (3 * E * I_OUT)
-    torsion = P * b**2 * a / (G * fr.torsion_constant(B, T))  # torque P·b along leg 1
+    torsion = P * b**2 * a / (G * fs.torsion_constant(B, T))  # torque P·b along leg 1
     expected = bending + torsion + (P * (a + b) / KGA if shear else 0.0)
     assert w == pytest.approx(expected, rel=TIGHT)
 
 
-def rigid_cross(L: float) -> fr.Frame:
+def rigid_cross(L: float) -> fs.Frame:
     """Master at the origin, slaves at (±1, 0), (0, ±1); from each a beam of length L outward."""
     dirs = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]], dtype=float)
     nodes = np.vstack([np.zeros(3), dirs, dirs * (1 + L)])
     elements = np.c_[np.arange(1, 5), np.arange(5, 9)]
-    return fr.Frame(nodes, elements, np.full(4, B), np.full(4, T), (5, 6, 7, 8), {0: (1, 2, 3, 4)})
+    return fs.Frame(nodes, elements, np.full(4, B), np.full(4, T), (5, 6, 7, 8), {0: (1, 2, 3, 4)})
 
 
 @pytest.mark.parametrize("shear", [False, True])
@@ -108,7 +109,7 @@ def test_rigid_body_on_symmetric_supports_translates_without_rotating(shear: boo
     loads = np.zeros((2, 9, 6))
     loads[0, 0, 2] = P  # central load along z: four guided beams bending out of plane
     loads[1, 0, 0] = P  # along x: two beams axial, two guided beams bending in plane
-    u = fr.solve_frame(frame, E, NU, loads, shear=shear)
+    u = fs.solve_frame(frame, E, NU, loads, shear=shear)
     assert np.abs(u[:, 0, 3:]).max() < 1e-14
     # a guided beam (both ends clamped against rotation): k = 1 / (L³/(12EI) + L/(κGA))
     k_out, k_in = (1 / (L**3 / (12 * E * i) + (L / KGA if shear else 0.0)) for i in (I_OUT, I_IN))
@@ -119,7 +120,7 @@ def test_rigid_body_on_symmetric_supports_translates_without_rotating(shear: boo
 
 def test_slaves_follow_the_master_as_a_rigid_body() -> None:
     frame = rigid_cross(3.0)
-    u = fr.solve_frame(frame, E, NU, tip_load(frame, 1, [0.3, -0.2, 0.9, 0.5, -0.4, 0.7]))
+    u = fs.solve_frame(frame, E, NU, tip_load(frame, 1, [0.3, -0.2, 0.9, 0.5, -0.4, 0.7]))
     for s in range(1, 5):
         d = frame.nodes[s] - frame.nodes[0]
         np.testing.assert_allclose(u[s, :3], u[0, :3] + np.cross(u[0, 3:], d), rtol=1e-13, atol=0)
@@ -129,9 +130,9 @@ def test_slaves_follow_the_master_as_a_rigid_body() -> None:
 
 def test_a_frame_without_supports_is_a_mechanism() -> None:
     frame = cantilever(3.0, 1)
-    free = fr.Frame(frame.nodes, frame.elements, frame.widths, frame.depths)
+    free = fs.Frame(frame.nodes, frame.elements, frame.widths, frame.depths)
     with pytest.raises(ValueError, match="mechanism"):
-        fr.solve_frame(free, E, NU, tip_load(free, 1, [0, 1, 0, 0, 0, 0]))
+        fs.solve_frame(free, E, NU, tip_load(free, 1, [0, 1, 0, 0, 0, 0]))
 
 
 # --- HexFlex ----------------------------------------------------------------------------------
@@ -262,7 +263,7 @@ def test_prefit_survives_geometries_the_constructor_rejects() -> None:
             "free dimension",
         ),
         (lambda: ident.target_values(np.zeros((6, 5))), "compliance"),
-        (lambda: fr.solve_frame(cantilever(1.0, 1), E, NU, np.zeros((3, 6))), "loads"),
+        (lambda: fs.solve_frame(cantilever(1.0, 1), E, NU, np.zeros((3, 6))), "loads"),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_parameter(call, match: str) -> None:

@@ -121,3 +121,49 @@ def test_every_notebook_is_a_declared_chapter() -> None:
 
     notebooks = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))
     assert sorted(CHAPTERS) == notebooks  # an undeclared notebook would never be executed
+
+
+#: what each room of ``mechlib.hexflex`` may import inside ``mechlib.hexflex`` (its package
+#: docstring says the same): the top (geometry, checks, frame, identify) nothing below it; the FE
+#: model the top's geometry only (it defines results: the FE cache's fingerprint digests it);
+#: the campaign the FE model; the ROM and the studies the FE model and the campaign; nothing in
+#: ``mechlib.hexflex`` imports a study
+HEXFLEX_ROOMS = {
+    "top": set(),
+    "fe": {"top"},
+    "campaign": {"top", "fe"},
+    "rom": {"top", "fe", "campaign"},
+    "studies": {"top", "fe", "campaign"},
+}
+
+
+def _room(module: str) -> str | None:
+    parts = module.split(".")
+    if parts[:2] != ["mechlib", "hexflex"] or len(parts) < 3:
+        return None
+    return parts[2] if parts[2] in HEXFLEX_ROOMS else "top"
+
+
+def test_each_hexflex_room_imports_only_the_rooms_below_it() -> None:
+    crossing = {
+        (m, i)
+        for m, imports in GRAPH.items()
+        for i in imports
+        if _room(m)
+        and _room(i)
+        and _room(i) != _room(m)
+        and _room(i) not in HEXFLEX_ROOMS[_room(m)]
+    }
+    assert crossing == set()
+    assert {_room(m) for m in GRAPH} >= set(HEXFLEX_ROOMS)  # every room exists
+
+
+def test_the_fe_model_imports_only_geometry_and_params_from_mechlib() -> None:
+    outside = {
+        i
+        for m, imports in GRAPH.items()
+        if _in(m, "mechlib.hexflex.fe")
+        for i in imports
+        if not _in(i, "mechlib.hexflex.fe")
+    }
+    assert outside <= {"mechlib.hexflex.geometry", "mechlib.params"}

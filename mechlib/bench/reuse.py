@@ -80,7 +80,7 @@ def chord_with(solver, solve, u: np.ndarray, target: np.ndarray, tol: float) -> 
         The corrections used (at most ``REUSE_MAX_CORRECTIONS``), and whether the iteration
         converged to ``tol`` (False also when an element inverted).
     """
-    from mechlib.hexflex.fe.nonlinear import Anderson
+    from mechlib.hexflex.fe.anderson import Anderson
 
     scale = np.linalg.norm(target)
     res = solver.residual(u, target)

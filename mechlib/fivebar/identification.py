@@ -3,7 +3,7 @@
 For leg κ and measured end-effector points ``P̂`` and joint readings ``ψ̂``, the residual is
 ``ΔQ = ψ̂ − gκ(P̂; φκ)`` and the identification Jacobian is ``Cκ = ∂gκ/∂φκ`` (Eq 17), computed
 analytically by implicit differentiation of the loop equation (Eq 23) in the RR dyad's
-:func:`mechlib.mechanisms.dyad.jacobian`.
+:func:`mechlib.dyad.jacobian`.
 
 *Divide and conquer* identifies each leg from its own posture set. The *traditional* method
 identifies all twelve parameters from one posture set; because leg κ's reading depends only on
@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
+from mechlib import dyad
 from mechlib.fivebar.kinematics import (
     PARAM_NAMES,
     SINGULAR_TOL,
@@ -27,7 +28,6 @@ from mechlib.fivebar.kinematics import (
     forward,
     joint_reading,
 )
-from mechlib.mechanisms import dyad
 from mechlib.params import check_float, check_int
 
 RANK_TOL = 1e-9
@@ -36,7 +36,7 @@ RANK_TOL = 1e-9
 
 def identification_jacobian(points: object, phi: object, mode: int) -> np.ndarray:
     """Analytic ``C = ∂ψ/∂φ`` of one leg at end-effector points (Eq 17), shape (n, 6):
-    :func:`mechlib.mechanisms.dyad.jacobian` on checked input, refusing serial singularities.
+    :func:`mechlib.dyad.jacobian` on checked input, refusing serial singularities.
 
     Parameters
     ----------

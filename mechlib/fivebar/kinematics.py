@@ -9,7 +9,7 @@ Modes are explicit: the *working mode* ``σκ = ±1`` of a leg picks the elbow s
 (``θ = atan2(P − A) + σ acos(…)``: +1 puts the elbow counter-clockwise of the line A→P);
 the *assembly mode* ``±1`` picks the side of the line B1→B2 on which P lies (+1: to its left).
 
-A leg is the RR dyad of :mod:`mechlib.mechanisms.dyad`, whose formulas (reach, active angle,
+A leg is the RR dyad of :mod:`mechlib.dyad`, whose formulas (reach, active angle,
 reading, identification Jacobian) this chapter calls after checking its input.
 """
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.mechanisms import dyad
+from mechlib import dyad
 from mechlib.params import check_choice, check_float, check_matrix
 
 PARAM_NAMES: tuple[str, ...] = ("l", "L", "Ax", "Ay", "k", "gamma")
@@ -80,7 +80,7 @@ def check_mode(name: str, mode: object) -> int:
 
 def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
     """Joint reading ψ = (θ − γ)/k of one leg for end-effector points (the function gκ, Eq 13):
-    :func:`mechlib.mechanisms.dyad.reading` on checked input.
+    :func:`mechlib.dyad.reading` on checked input.
 
     θ is wrapped to the branch nearest the offset γ so that ψ is continuous over the workspace.
 

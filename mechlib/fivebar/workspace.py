@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechlib import dyad
 from mechlib.fivebar import kinematics as kin
-from mechlib.mechanisms import dyad
 from mechlib.params import check_int, check_matrix
 
 #: Default number of grid points per side of the field (Fig 10: 400 × 400, 0.16 M points).
@@ -160,7 +160,7 @@ def leg_chain(point: object, phi: object, mode: int) -> tuple[np.ndarray, float]
         Rows A, B, P [m].
     theta : float
         Active angle θ [rad] (inverse kinematics, Eq 23), on the branch of
-        :func:`mechlib.mechanisms.dyad.active_angle`.
+        :func:`mechlib.dyad.active_angle`.
     """
     phi = kin.check_leg(phi)
     p = np.asarray(point, dtype=float)

@@ -1,6 +1,6 @@
 """The planar 5R of the thesis (sec. 3.7) as an instance of the leg-wise calibration core.
 
-Leg κ's reading and identification Jacobian are the RR dyad's (:mod:`mechlib.mechanisms.dyad`,
+Leg κ's reading and identification Jacobian are the RR dyad's (:mod:`mechlib.dyad`,
 which the 5R chapter's :mod:`mechlib.fivebar.kinematics` and :mod:`mechlib.fivebar.identification`
 call too; Eq 21's parameters ``[l, L, Ax, Ay, k, γ]``); forward kinematics is the closed-form
 circle intersection. The calibration region is a disc around the MIW centre (``fraction`` of its
@@ -14,10 +14,10 @@ from functools import partial
 
 import numpy as np
 
+from mechlib import dyad
 from mechlib import published as pub
 from mechlib.calibration.mechanism import Leg, Mechanism
 from mechlib.fivebar import kinematics as kin
-from mechlib.mechanisms import dyad
 from mechlib.params import check_float
 
 UNITS = ("m", "m", "m", "m", "-", "rad")

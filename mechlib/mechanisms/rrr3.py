@@ -1,6 +1,6 @@
 """A planar 3-RRR parallel mechanism (three legs, pose ``r = (x, y, φ)``).
 
-Leg κ is the 5R's RR dyad (:mod:`mechlib.mechanisms.dyad`): the proximal link ``lκ`` turns
+Leg κ is the 5R's RR dyad (:mod:`mechlib.dyad`): the proximal link ``lκ`` turns
 about the base joint ``Aκ`` by ``θκ = kκ ψκ + γκ``; the distal link ``Lκ`` joins its elbow to the
 platform joint ``Cκ = (x, y) + R(φ) cκ``, where ``cκ`` is the platform attachment in the
 platform frame. Leg parameters (the 5R's Eq 21): ``φκ = [lκ, Lκ, Aκx, Aκy, kκ, γκ]``; the platform
@@ -17,9 +17,9 @@ from functools import partial
 
 import numpy as np
 
+from mechlib import dyad
 from mechlib.calibration.mechanism import Leg, Mechanism
 from mechlib.fivebar import kinematics as kin
-from mechlib.mechanisms import dyad
 from mechlib.params import check_float
 
 UNITS = ("m", "m", "m", "m", "-", "rad")

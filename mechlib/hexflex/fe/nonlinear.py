@@ -27,8 +27,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
-from threadpoolctl import threadpool_limits
 
+from mechlib.hexflex.fe.anderson import Anderson
 from mechlib.hexflex.fe.factor import SOLVERS, PatternCholesky, factorise
 from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.hexflex.fe.sfepy_tl import register_svk_term, tl_evaluator
@@ -357,43 +357,3 @@ class NonlinearSolver:
                 solve = None  # refactorise at the current point
             fresh = False
         return u, norm, used, facts
-
-
-class Anderson:
-    """Anderson mixing of the corrections of one factorised tangent (depth 0: plain steps).
-
-    Parameters
-    ----------
-    depth : int
-        How many of the last iterate and correction differences the mixing fits (0: none).
-
-    For iterates x_k with corrections f_k (``-K⁻¹ r(x_k)``) the step is
-    ``f_k − (ΔX + ΔF) γ`` with γ the least-squares fit of f_k by the last ``depth`` differences
-    ΔF of corrections (ΔX of iterates) — GMRES-like acceleration of the chord iteration.
-    """
-
-    def __init__(self, depth: int) -> None:
-        self.depth = depth
-        self.reset()
-
-    def reset(self) -> None:
-        self._x: np.ndarray | None = None
-        self._f: np.ndarray | None = None
-        self._dx: list[np.ndarray] = []
-        self._df: list[np.ndarray] = []
-
-    def step(self, x: np.ndarray, f: np.ndarray) -> np.ndarray:
-        """The step from ``x`` given its correction ``f``."""
-        if self.depth == 0:
-            return f
-        if self._x is not None:
-            self._dx.append(x - self._x)
-            self._df.append(f - self._f)
-            del self._dx[: -self.depth], self._df[: -self.depth]
-        self._x, self._f = x, f
-        if not self._df:
-            return f
-        df = np.stack(self._df, axis=1)
-        with threadpool_limits(limits=1, user_api="blas"):  # bit-identical in any process
-            gamma = np.linalg.lstsq(df, f, rcond=None)[0]
-            return f - (np.stack(self._dx, axis=1) + df) @ gamma

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from mechlib.hexflex.fe import mesh as ms
-from mechlib.hexflex.frame import SHEAR_FACTOR
+from mechlib.hexflex.frame_solver import SHEAR_FACTOR
 from mechlib.params import check_choice, check_float, check_int
 
 

@@ -7,16 +7,10 @@ SVKTangent` read from a ``HexFlexModel`` (``element``, ``body_factor``, ``young`
 ``fe``, ``n_dofs``, ``load_vectors``, ``check_forces``, ``back_substitute``), so the HexFlex's
 total-Lagrangian Saint Venant–Kirchhoff code path solves it; its one "actuator force" is P [N].
 
-The reference is the inextensible Euler–Bernoulli elastica under a dead end load, a function of
-α = PL²/EI only (Bisshopp & Drucker 1945, Q. Appl. Math. 3(3) 272–275): θ'' + α cos θ = 0 on
-s ∈ [0, 1], θ(0) = 0, θ'(1) = 0. Its first integral θ'² = 2α (sin θ₀ − sin θ) (θ₀ the tip
-rotation) and 1 + sin θ = 2k² sin² φ give, with k² = (1 + sin θ₀)/2 and sin φ₁ = 1/(k√2),
-
-    √α = K(k) − F(φ₁, k),  δ/L = 1 − (2/√α) [E(k) − E(φ₁, k)],  x_tip/L = √(2 sin θ₀ / α)
-
-(SciPy's ``ellipkinc``/``ellipeinc``; θ₀ by Brent's method). The solid differs from it by shear
-(O((h/L)²)), by the clamp's restraint of the Poisson contraction (O(ν² h/L)), by the strain
-measure at the outer fibres (strain ≈ α h / 2L) and by the discretisation: :func:`mesh_study`.
+The reference is the inextensible Euler–Bernoulli elastica (:mod:`.elastica`). The solid
+differs from it by shear (O((h/L)²)), by the clamp's restraint of the Poisson contraction
+(O(ν² h/L)), by the strain measure at the outer fibres (strain ≈ α h / 2L) and by the
+discretisation: :func:`mesh_study`.
 It lives beside the solver it verifies and reuses ``problem``'s SfePy helpers (``mechlib/bench``
 is the speed wing). Units: mm, N, MPa.
 """
@@ -26,17 +20,16 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
-from scipy.special import ellipe, ellipeinc, ellipk, ellipkinc
 from threadpoolctl import threadpool_limits
 
 from mechlib.hexflex.fe import problem as fe
 from mechlib.hexflex.fe.factor import factorise
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver, SolveStats
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
+from mechlib.hexflex.studies.elastica import MAX_ALPHA, TipResponse, check_alpha, elastica_tip
 from mechlib.params import check_float, check_int, check_matrix
 
 #: Default beam: length [mm] and square section side [mm] (L/h = 50).
@@ -44,9 +37,6 @@ LENGTH_MM = 100.0
 SECTION_MM = 2.0
 #: Smallest slenderness L/h accepted (below it a solid is no longer a slender beam).
 MIN_SLENDERNESS = 20.0
-#: Largest load parameter α = PL²/EI accepted (tip rotation ≈ 70°, solved in 5 load steps in
-#: 2.3 s on the default beam; the tests use ≤ 2).
-MAX_ALPHA = 5.0
 #: Default elements along the length and across each side of the section (the tests' mesh;
 #: :func:`mesh_study` refines both).
 N_LENGTH = 32
@@ -66,54 +56,8 @@ ALPHA_STEP = 1.0
 #: difference (64 × 1 × 1, 32 × 2 × 2; chiefly the clamp's Poisson restraint, −0.18 %, −0.29 %,
 #: −0.14 %, halving at L/h = 100) plus the default mesh's distance to them, rounded up.
 ELASTICA_TOL: tuple[float, float, float] = (0.002, 0.0035, 0.0015)
-#: Bisection and root tolerance of the tip rotation θ₀ [rad] (double-precision round-off).
-_ROOT_XTOL = 1e-15
 #: Relative tolerance of coordinate selections (end faces).
 _REGION_TOL = 1e-9
-
-
-class TipResponse(NamedTuple):
-    """Tip of a cantilever under a transverse end load, over the length: deflection δ/L (along
-    the load), end shortening (L − x_tip)/L, and the tip rotation θ₀ [rad]."""
-
-    deflection: float
-    shortening: float
-    rotation: float
-
-
-def check_alpha(alpha: object) -> float:
-    """The load parameter α = PL²/EI as a float in [0, ``MAX_ALPHA``]; ValueError otherwise."""
-    return check_float("alpha (PL^2/EI)", alpha, low=0.0, high=MAX_ALPHA)
-
-
-def elastica_tip(alpha: float) -> TipResponse:
-    """Tip (δ/L, (L − x_tip)/L, θ₀ [rad]) of the inextensible elastica cantilever under a dead
-    end load, α = PL²/EI in [0, ``MAX_ALPHA``] (closed form; small α: α/3, α²/15, α/2).
-
-    Raises
-    ------
-    ValueError
-        If ``alpha`` is out of range.
-    """
-    alpha = check_alpha(alpha)
-    if alpha == 0.0:
-        return TipResponse(0.0, 0.0, 0.0)
-    root = math.sqrt(alpha)
-
-    def parts(theta0: float) -> tuple[float, float]:
-        m = 0.5 * (1.0 + math.sin(theta0))  # SciPy's parameter m = k²
-        return m, math.asin(min(1.0, 1.0 / math.sqrt(2.0 * m)))
-
-    def mismatch(theta0: float) -> float:
-        m, phi = parts(theta0)
-        return float(ellipk(m) - ellipkinc(phi, m)) - root
-
-    # K − F rises from 0 (θ₀ = 0) to ∞ (θ₀ = π/2): one root in between
-    theta0 = brentq(mismatch, 0.0, 0.5 * math.pi * (1.0 - 1e-12), xtol=_ROOT_XTOL)
-    m, phi = parts(theta0)
-    deflection = 1.0 - 2.0 / root * float(ellipe(m) - ellipeinc(phi, m))
-    shortening = 1.0 - math.sqrt(2.0 * math.sin(theta0) / alpha)
-    return TipResponse(deflection, shortening, theta0)
 
 
 @dataclass
