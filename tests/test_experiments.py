@@ -136,8 +136,13 @@ def test_a_failed_task_is_named_and_completed_results_are_kept(tmp_path) -> None
 
 
 def _poses(kind: str, forces: np.ndarray) -> np.ndarray:
-    """A fake task's result: 2 × forces as the pose, in every convention the kind has."""
-    return np.tile(2.0 * forces, (1, ex._WIDTH[kind] // 6))
+    """A fake task's result: 2 × forces as the pose, in every convention the kind has, and
+    made-up solve statistics after a non-linear run's poses."""
+    poses = np.tile(2.0 * forces, (1, ex.POSE_COLUMNS[kind] // 6))
+    stats = np.tile([3.0, 1.0, 0.0, 1e-8], (len(forces), 1))[
+        :, : ex.RESULT_COLUMNS[kind] - poses.shape[1]
+    ]
+    return np.hstack([poses, stats])
 
 
 class FakeTask:
@@ -338,6 +343,14 @@ def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
         spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False, pose="all"
     )
     np.testing.assert_array_equal(both[0], np.concatenate([small[0], rot, eul]))
+    # what the solve spent is kept beside the poses: the solver's own counts and residual
+    _, stats = solver.solve(d[0])
+    spent = ex.run_experiments(
+        spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False, pose="stats"
+    )
+    expected = [sum(stats.iterations), sum(stats.factorisations), stats.restarts, stats.residual]
+    np.testing.assert_array_equal(spent[0], expected)
+    assert spent.shape == (1, len(ex.SOLVE_STATS)) and spent[0, 0] >= 1 and spent[0, 1] >= 1
     assert len(list(tmp_path.glob("*.npy"))) == 1  # one solve, one cache entry
     with pytest.raises(ValueError, match="pose must be one of"):
         ex.run_experiments(spec, d, kind="linear", pose="rotvec", progress=False)

@@ -44,7 +44,7 @@ def test_every_task_a_build_runs_is_logged_and_packed(built, tmp_path) -> None:
     for a, b in zip(entries, back, strict=True):
         assert (a.key, a.spec, a.kind, a.steps) == (b.key, b.spec, b.kind, b.steps)
         np.testing.assert_array_equal(a.forces, b.forces)
-        np.testing.assert_array_equal(a.poses, b.poses)  # bit for bit through the file
+        np.testing.assert_array_equal(a.results, b.results)  # bit for bit through the file
     assert (folder / st.RESULTS).stat().st_size < 10_000
 
 
@@ -69,7 +69,7 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
         st.seed_cache(folder, tmp_path / "c1")
     monkeypatch.undo()
     # an edited force: the entry's key is no longer its inputs' digest
-    bad = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces * 1.01, e.poses) for e in entries]
+    bad = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces * 1.01, e.results) for e in entries]
     with pytest.raises(st.StoreError, match=rf"entry {entries[0].key} does not match its own"):
         st.read_store(st.write_store(bad, tmp_path / "edited"))
     # a changed byte of results.npz: the checksum
@@ -115,7 +115,9 @@ def test_a_sample_of_the_store_is_recomputed_cold_and_an_edit_is_named(built, tm
     checks = cc.check_entries(entries, {"nonlinear": 1, "linear": 1}, seed=7)
     assert sorted(c.kind for c in checks) == ["linear", "nonlinear"]
     assert all(c.agrees for c in checks)
-    off = [st.Entry(e.key, e.spec, e.kind, e.steps, e.forces, e.poses * 1.000001) for e in entries]
+    off = [
+        st.Entry(e.key, e.spec, e.kind, e.steps, e.forces, e.results * 1.000001) for e in entries
+    ]
     (check,) = cc.check_entries(off, {"nonlinear": 1}, seed=7)
     assert not check.agrees and len(check.stored) == 6 and check.stored != check.fresh
 

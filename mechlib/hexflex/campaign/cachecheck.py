@@ -18,7 +18,13 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.experiments import KINDS, ModelSpec, release_models, task_poses
+from mechlib.hexflex.campaign.experiments import (
+    KINDS,
+    POSE_COLUMNS,
+    ModelSpec,
+    release_models,
+    task_poses,
+)
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_int
 
@@ -134,7 +140,7 @@ def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[Ca
     logged = [{"file": f"{e.key}.npy", "kind": e.kind, "entry": e} for e in entries]
     picked = [d["entry"] for d in sample(logged, per_kind, seed)]
     return _recompute(
-        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.poses) for e in picked]
+        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked]
     )
 
 
@@ -145,10 +151,13 @@ def _recompute(tasks: list[tuple]) -> list[CacheCheck]:
         spec = spec_from_key(key)
         for file, _, kind, forces, steps, cached in (t for t in tasks if t[1] == key):
             fresh = task_poses(spec, kind, forces, steps)
-            same = fresh.shape == cached.shape and np.array_equal(fresh, cached)
             if fresh.shape != cached.shape:
                 out.append(CacheCheck(file, kind, len(forces), False, False, np.inf))
                 continue
+            # the poses are compared; the solve statistics after them may differ with round-off
+            # (a correction more or less) while the converged poses agree
+            fresh, cached = fresh[:, : POSE_COLUMNS[kind]], cached[:, : POSE_COLUMNS[kind]]
+            same = np.array_equal(fresh, cached)
             diff = np.abs(fresh - cached)
             worst = int(np.argmax(diff.max(axis=1)))
             agrees = float(diff.max()) <= AGREE_RTOL * float(np.abs(cached).max())

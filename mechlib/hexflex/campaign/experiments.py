@@ -49,8 +49,16 @@ KINDS: tuple[str, ...] = ("linear", "nonlinear")
 #: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
 #: the first only (a linear displacement field is no finite rotation).
 POSE_CONVENTIONS: tuple[str, ...] = CONVENTIONS
-#: columns a task returns per run: 6 pose components per convention it has
-_WIDTH = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
+#: what a non-linear run reports after its poses (:class:`~mechlib.hexflex.fe.nonlinear.
+#: SolveStats`, summed over its load steps): corrections (back-substitutions), tangent
+#: factorisations, load steps the modified method gave up on (solved again by Newton), and the
+#: final ‖residual‖ / ‖load‖. A run that does not converge raises, so a stored run converged.
+SOLVE_STATS: tuple[str, ...] = ("corrections", "factorisations", "restarts", "residual")
+#: pose columns a run has: 6 per convention of its kind
+POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
+#: columns a task returns (and the cache and the results store keep) per run: its poses, then,
+#: for a non-linear run, its ``SOLVE_STATS``
+RESULT_COLUMNS = {"linear": 6, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 
@@ -158,16 +166,20 @@ def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndar
     model = solver.model
     rows = []
     for f in forces:
-        u, _ = solver.solve(f, steps=steps)
+        u, stats = solver.solve(f, steps=steps)
         exact = finite_poses(*model.stage_motion(u))
+        spent = [sum(stats.iterations), sum(stats.factorisations), stats.restarts, stats.residual]
         # the small-rotation pose as the linear model computes it (bit for bit), then the others
-        rows.append(np.concatenate([model.pose_of(u)] + [exact[c] for c in CONVENTIONS[1:]]))
+        rows.append(
+            np.concatenate([model.pose_of(u)] + [exact[c] for c in CONVENTIONS[1:]] + [spent])
+        )
     return np.array(rows)
 
 
 def task_poses(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    """What one task of :func:`run_experiments` computes and caches, computed now: the poses
-    (rows of ``forces``, 6 or 18 columns) — for checking a cached result against a fresh one."""
+    """What one task of :func:`run_experiments` computes and caches, computed now: per row of
+    ``forces``, ``RESULT_COLUMNS[kind]`` columns (the poses; a non-linear run's ``SOLVE_STATS``
+    after them) — for checking a cached result against a fresh one."""
     return _task(spec, kind, np.asarray(forces, dtype=float), steps)
 
 
@@ -219,8 +231,9 @@ def run_experiments(
         The pose convention (``POSE_CONVENTIONS``): the small-rotation fit (default; the only
         one of a linear run) or, for a non-linear run, the exact rigid registration of the stage
         nodes as translation + rotation vector or as intrinsic Euler XYZ angles; ``"all"``: the
-        three side by side, (n, 18) in that order. A non-linear run computes all three (one
-        cache entry): asking for another convention costs no solve.
+        three side by side, (n, 18) in that order; ``"stats"``: not a pose but what each
+        non-linear solve spent, (n, 4) as ``SOLVE_STATS``. A non-linear run computes all of
+        them (one cache entry): asking for another costs no solve.
 
     Raises
     ------
@@ -229,13 +242,11 @@ def run_experiments(
     """
     d = check_forces_design(design)
     kind = check_choice("kind", kind, KINDS)
-    allowed = (*POSE_CONVENTIONS, "all") if kind == "nonlinear" else ("small",)
+    allowed = (*POSE_CONVENTIONS, "all", "stats") if kind == "nonlinear" else ("small",)
     pose = check_choice("pose", pose, allowed)
-    width = _WIDTH[kind]
-    cols = (
-        slice(0, width)
-        if pose == "all"
-        else slice(6 * allowed.index(pose), 6 * allowed.index(pose) + 6)
+    width, n_poses = RESULT_COLUMNS[kind], POSE_COLUMNS[kind]
+    cols = {"all": slice(0, n_poses), "stats": slice(n_poses, width)}.get(
+        pose, slice(6 * allowed.index(pose), 6 * allowed.index(pose) + 6)
     )
     steps = check_int("steps", steps, low=1, high=100)
     block = LINEAR_BLOCK if kind == "linear" else 1
@@ -328,7 +339,9 @@ def run_keeping_failures(
         return np.arange(len(d)), run_experiments(spec, d, **kwargs), []
     except ExperimentError as err:
         index = np.array(sorted(err.completed), dtype=int)
-        n_cols = _WIDTH["nonlinear"] if kwargs.get("pose") == "all" else 6
+        n_cols = {"all": POSE_COLUMNS["nonlinear"], "stats": len(SOLVE_STATS)}.get(
+            kwargs.get("pose"), 6
+        )
         poses = np.array([err.completed[i] for i in index], dtype=float).reshape(-1, n_cols)
         failures = [
             FailedRun(i, tuple(d[i].tolist()), err.residuals.get(i, np.nan), err.reasons.get(i, ""))

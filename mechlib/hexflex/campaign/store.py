@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.experiments import KINDS
+from mechlib.hexflex.campaign.experiments import KINDS, RESULT_COLUMNS
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 
@@ -40,8 +40,6 @@ MANIFEST = "manifest.json"
 RESULTS = "results.npz"
 #: manifest fields every store has (the build wing may add more: commit, processor, timings)
 REQUIRED = ("version", "fingerprint", "sha256", "entries", "runs")
-#: columns of the poses array (a linear task fills the first 6: one pose convention)
-POSE_COLUMNS = 18
 #: command that regenerates the store, named by every refusal of a stale store
 REGENERATE = "make store"
 
@@ -53,14 +51,17 @@ class StoreError(RuntimeError):
 @dataclass(frozen=True)
 class Entry:
     """One FE task: its cache key, model specification (:meth:`ModelSpec.key` text), kind,
-    load steps, forces (rows, 6) [N] and poses (rows, 6 or 18) [µm, µrad]."""
+    load steps, forces (rows, 6) [N] and results (rows, ``RESULT_COLUMNS[kind]``): the poses
+    [µm, µrad] (6 of a linear task, 18 of a non-linear one: three conventions) and a non-linear
+    run's solve statistics after them (``SOLVE_STATS``: corrections, factorisations, restarts,
+    final relative residual)."""
 
     key: str
     spec: str
     kind: str
     steps: int
     forces: np.ndarray
-    poses: np.ndarray
+    results: np.ndarray
 
 
 def entries_from_cache(log: Path, cache_dir: Path) -> list[Entry]:
@@ -111,10 +112,10 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
     folder = Path(folder)
     specs = sorted({e.spec for e in entries})
     rows = np.array([len(e.forces) for e in entries], dtype=np.int64)
-    poses = np.full((int(rows.sum()), POSE_COLUMNS), np.nan)
+    results = np.full((int(rows.sum()), max(RESULT_COLUMNS.values())), np.nan)
     at = 0
     for e in entries:
-        poses[at : at + len(e.forces), : e.poses.shape[1]] = e.poses
+        results[at : at + len(e.forces), : e.results.shape[1]] = e.results
         at += len(e.forces)
     arrays = {
         "keys": np.array([e.key for e in entries], dtype="U32"),
@@ -124,7 +125,7 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
         "steps": np.array([e.steps for e in entries], dtype=np.int64),
         "rows": rows,
         "forces": np.concatenate([e.forces for e in entries]) if entries else np.zeros((0, 6)),
-        "poses": poses,
+        "results": results,
     }
     folder.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}."))
@@ -197,14 +198,14 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     for i, key in enumerate(a["keys"].tolist()):
         kind = KINDS[int(a["kind"][i])]
         forces = a["forces"][starts[i] : starts[i + 1]]
-        width = 6 if kind == "linear" else POSE_COLUMNS
+        width = RESULT_COLUMNS[kind]
         e = Entry(
             key, str(a["specs"][a["spec_index"][i]]), kind, int(a["steps"][i]), forces,
-            a["poses"][starts[i] : starts[i + 1], :width],
+            a["results"][starts[i] : starts[i + 1], :width],
         )  # fmt: skip
-        if np.abs(forces).max(initial=0.0) > MAX_FORCE_N or not np.all(np.isfinite(e.poses)):
+        if np.abs(forces).max(initial=0.0) > MAX_FORCE_N or not np.all(np.isfinite(e.results)):
             raise StoreError(
-                f"store entry {key}: forces beyond ±{MAX_FORCE_N} N or poses not finite: "
+                f"store entry {key}: forces beyond ±{MAX_FORCE_N} N or results not finite: "
                 f"regenerate the store with `{REGENERATE}`"
             )
         expected = task_key(e.spec, e.kind, e.forces, e.steps, manifest["fingerprint"])
@@ -240,7 +241,7 @@ def seed_cache(folder: Path, cache_dir: Path) -> int:
     for e in entries:
         fd, tmp = tempfile.mkstemp(dir=cache_dir, suffix=".npy.tmp")
         with os.fdopen(fd, "wb") as fh:
-            np.save(fh, e.poses)
+            np.save(fh, e.results)
         os.replace(tmp, cache_dir / f"{e.key}.npy")
     return len(entries)
 

@@ -20,7 +20,8 @@ import numpy as np
 from mechlib.hexflex.campaign.sources import model_modules
 from mechlib.paths import fe_log_path
 
-CACHE_VERSION = 2  # 2: a non-linear task stores its poses in the three conventions
+#: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics
+CACHE_VERSION = 3
 
 
 @lru_cache(maxsize=1)
