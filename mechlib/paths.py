@@ -14,6 +14,9 @@ from pathlib import Path
 REPO_ROOT = Path(__file__).resolve().parents[1]
 #: the default build: ``make notebooks`` of the ci profile (other profiles: ``build/<profile>``)
 DEFAULT_BUILD = REPO_ROOT / "build"
+#: the FE results store the repository ships (``make store`` writes it, ``make store-seed`` reads
+#: it into the FE cache)
+STORE_DIR = REPO_ROOT / "store"
 #: folder that a notebook's record is written to (default ``build/records``)
 RECORDS_ENV = "MECHLIB_RECORDS"
 #: folder of cached FE results (default ``build/cache/experiments``)

@@ -174,3 +174,20 @@ def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp
     assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "lacks fields" in err
+
+
+def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
+    from mechlib.pipeline import storecmd
+
+    assert "no results store" in storecmd.landing_line(tmp_path / "absent")
+    entries = [
+        st.Entry("k" * 32, "spec", "nonlinear", 1, np.zeros((1, 6)), np.zeros((1, 22))),
+        st.Entry("j" * 32, "spec", "linear", 1, np.zeros((3, 6)), np.zeros((3, 6))),
+    ]
+    folder = st.write_store(entries, tmp_path / "store", {"date": "2026-11-25", "commit": "abc"})
+    line = storecmd.landing_line(folder)
+    assert "1 non-linear runs and 3 linear load cases" in line and "commit `abc`" in line
+    miss = (1 - storecmd.WRONG_SHARE) ** storecmd.COLD_NONLINEAR
+    assert f"probability {miss:.1%}" in line and f"{miss:.1%}" == "4.2%"
+    with pytest.raises(ValueError, match="wrong_share must be in"):
+        storecmd.landing_line(folder, wrong_share=1.0)

@@ -28,8 +28,8 @@ from typing import Any
 
 import yaml
 
-from mechlib.paths import REPO_ROOT, records_dir
-from mechlib.pipeline import bundle, landing, provenance, verdicts
+from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
+from mechlib.pipeline import bundle, landing, provenance, storecmd, verdicts
 from mechlib.pipeline.book import artefacts, methods, reportpage
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.records import load
@@ -219,7 +219,7 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         Path(book) / "intro.md",
         profile,
         link=link,
-        provenance=made,
+        provenance=f"{made}\n{storecmd.landing_line(STORE_DIR)}",
         bundle=f"/{data.relative_to(Path(book)).as_posix()}",
     )
     for page in methods.write_pages(generated, link):

@@ -24,6 +24,43 @@ from mechlib.pipeline.provenance import commit, cpu_model
 COLD_NONLINEAR, COLD_LINEAR = 30, 2
 
 
+#: share of wrong stored runs whose chance of escaping the cold sample the landing page states
+WRONG_SHARE = 0.1
+
+
+def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
+    """One Markdown list line for the landing page: where this build's FE runs came from and,
+    when from the store ``folder``, what its cold sample implies — the chance that
+    ``COLD_NONLINEAR`` runs drawn from a store whose share ``wrong_share`` of runs is wrong miss
+    every wrong one, ``(1 − wrong_share)^COLD_NONLINEAR``.
+
+    Raises
+    ------
+    ValueError
+        For a share outside (0, 1).
+    StoreError
+        For a store whose manifest cannot be read.
+    """
+    if not 0.0 < wrong_share < 1.0:
+        raise ValueError(f"wrong_share must be in (0, 1), got {wrong_share}")
+    if not (Path(folder) / store.MANIFEST).exists():
+        return "- FE runs: every one computed by this build (no results store)."
+    m = store.read_manifest(Path(folder))
+    runs = m["runs"]
+    miss = (1.0 - wrong_share) ** COLD_NONLINEAR
+    made = (
+        f"computed {m.get('date', 'on an unrecorded date')} on "
+        f"{m.get('processor', 'an unrecorded processor')}, commit `{m.get('commit', 'unrecorded')}`"
+    )
+    return (
+        f"- FE runs: {runs.get('nonlinear', 0)} non-linear runs and {runs.get('linear', 0)} "
+        f"linear load cases read from the results store ({made}), not solved again. Every test "
+        f"run recomputes {COLD_NONLINEAR} stored non-linear runs and {COLD_LINEAR} linear blocks "
+        f"cold, drawn anew for each commit: were {wrong_share:.0%} of the stored runs wrong, "
+        f"such a sample would miss every one of them with probability {miss:.1%}."
+    )
+
+
 def _seed(args: argparse.Namespace) -> int:
     if not (args.store / store.MANIFEST).exists():
         print(f"store: no {args.store / store.MANIFEST}: every FE task is computed (`make store`)")
