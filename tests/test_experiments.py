@@ -373,3 +373,12 @@ def test_release_models_empties_the_model_and_solver_caches() -> None:
     ex.release_models()
     assert ex._model.cache_info().currsize == 0
     assert ex.solver_for.cache_info().currsize == 0
+
+
+def test_a_docstring_only_package_does_not_enter_the_cache_key() -> None:
+    from mechlib.hexflex.campaign import taskcache
+
+    assert not taskcache._defines_code(b'"""What the package holds."""\n')
+    assert not taskcache._defines_code(b'"""Doc."""\n\nfrom __future__ import annotations\n')
+    assert taskcache._defines_code(b'"""Doc."""\n\nSIZE = 2\n')
+    assert taskcache._defines_code(b"from mechlib.hexflex.fe.model import HexFlexModel\n")

@@ -81,7 +81,9 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
     # a malformed manifest, an unknown version, no store
     m = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**m, "version": 99}))
-    with pytest.raises(st.StoreError, match="format version 99; this code reads version 1"):
+    with pytest.raises(
+        st.StoreError, match=f"format version 99; this code reads version {st.STORE_VERSION}"
+    ):
         st.read_store(folder)
     (folder / st.MANIFEST).write_text("{not json")
     with pytest.raises(st.StoreError, match="not valid JSON"):
@@ -186,8 +188,11 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     ]
     folder = st.write_store(entries, tmp_path / "store", {"date": "2026-11-25", "commit": "abc"})
     line = storecmd.landing_line(folder)
-    assert "1 non-linear runs and 3 linear load cases" in line and "commit `abc`" in line
+    assert "holds 1 non-linear runs and 3 linear load cases" in line and "commit `abc`" in line
     miss = (1 - storecmd.WRONG_SHARE) ** storecmd.COLD_NONLINEAR
     assert f"probability {miss:.1%}" in line and f"{miss:.1%}" == "4.2%"
     with pytest.raises(ValueError, match="wrong_share must be in"):
         storecmd.landing_line(folder, wrong_share=1.0)
+    manifest = json.loads((folder / st.MANIFEST).read_text())
+    (folder / st.MANIFEST).write_text(json.dumps({**manifest, "fingerprint": "0" * 16}))
+    assert "computed by other FE code" in storecmd.landing_line(folder)

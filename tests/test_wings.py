@@ -124,8 +124,9 @@ def test_every_notebook_is_a_declared_chapter() -> None:
 
 
 #: what each room of ``mechlib.hexflex`` may import inside ``mechlib.hexflex`` (its package
-#: docstring says the same): the top (geometry, checks, frame, identify) nothing below it; the FE
-#: model the top's geometry only (it defines results: the FE cache's fingerprint digests it);
+#: docstring says the same): the top (geometry, checks, frame_solver, frame, identify) nothing
+#: below it; the FE model the top's geometry only (it defines results: the FE cache's
+#: fingerprint digests it);
 #: the campaign the FE model; the ROM and the studies the FE model and the campaign; nothing in
 #: ``mechlib.hexflex`` imports a study
 HEXFLEX_ROOMS = {

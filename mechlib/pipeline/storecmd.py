@@ -18,6 +18,7 @@ import sys
 from pathlib import Path
 
 from mechlib.hexflex.campaign import store
+from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
 from mechlib.pipeline.provenance import commit, cpu_model
 
 #: non-linear and linear tasks of the store that ``make test`` recomputes cold
@@ -46,6 +47,11 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     if not (Path(folder) / store.MANIFEST).exists():
         return "- FE runs: every one computed by this build (no results store)."
     m = store.read_manifest(Path(folder))
+    if m["fingerprint"] != model_code_fingerprint():
+        return (
+            "- FE runs: every one computed by this build (the results store was computed by "
+            "other FE code)."
+        )
     runs = m["runs"]
     miss = (1.0 - wrong_share) ** COLD_NONLINEAR
     made = (
@@ -53,8 +59,9 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
         f"{m.get('processor', 'an unrecorded processor')}, commit `{m.get('commit', 'unrecorded')}`"
     )
     return (
-        f"- FE runs: {runs.get('nonlinear', 0)} non-linear runs and {runs.get('linear', 0)} "
-        f"linear load cases read from the results store ({made}), not solved again. Every test "
+        f"- FE runs: the results store holds {runs.get('nonlinear', 0)} non-linear runs and "
+        f"{runs.get('linear', 0)} linear load cases of this FE code ({made}); a build seeded "
+        f"from it reads them instead of solving them again. Every test "
         f"run recomputes {COLD_NONLINEAR} stored non-linear runs and {COLD_LINEAR} linear blocks "
         f"cold, drawn anew for each commit: were {wrong_share:.0%} of the stored runs wrong, "
         f"such a sample would miss every one of them with probability {miss:.1%}."

@@ -145,7 +145,8 @@ def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[Ca
 
 
 def _recompute(tasks: list[tuple]) -> list[CacheCheck]:
-    """Each (file, spec text, kind, forces, steps, cached poses) task solved now and compared."""
+    """Each (file, spec text, kind, forces, steps, cached results) task solved now and its poses
+    compared (the solve statistics after a non-linear run's poses are not)."""
     out: list[CacheCheck] = []
     for key in dict.fromkeys(t[1] for t in tasks):  # one model at a time (memory)
         spec = spec_from_key(key)

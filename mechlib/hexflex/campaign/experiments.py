@@ -33,14 +33,12 @@ from mechlib.hexflex.campaign.taskcache import (
 )
 from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
 from mechlib.hexflex.fe.model import (
-    AL7075_POISSON,
-    AL7075_YOUNG_MPA,
     HexFlexModel,
     check_forces,
 )
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.problem import QUAD_ORDER
-from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_choice, check_int
 
 KINDS: tuple[str, ...] = ("linear", "nonlinear")
@@ -120,8 +118,9 @@ def release_models() -> None:
 class ExperimentError(RuntimeError):
     """Experiments failed.
 
-    ``failed`` lists the run indices without a result; ``completed`` maps run index → pose (6,)
-    of every finished run; ``reasons`` maps each failed index to its task's error message and
+    ``failed`` lists the run indices without a result; ``completed`` maps run index → its row
+    (the columns asked for: a pose (6,), ``"all"`` (18,) or ``"stats"`` (4,)) of every finished
+    run; ``reasons`` maps each failed index to its task's error message and
     ``residuals`` to the last relative residual of a non-linear run that did not converge
     (``nan`` when the error carries none).
     """
@@ -209,7 +208,8 @@ def run_experiments(
     progress: bool = True,
     pose: str = "small",
 ) -> np.ndarray:
-    """Stage poses (n, 6) [µm, µrad] of the experiments of a force design (n, 6) [N].
+    """Stage poses (n, 6) [µm, µrad] of the experiments of a force design (n, 6) [N] (or, as
+    ``pose`` says, the three conventions side by side or what each non-linear solve spent).
 
     Parameters
     ----------
@@ -227,7 +227,7 @@ def run_experiments(
         Folder of cached task results; ``None`` disables caching.
     progress : bool
         Show a tqdm progress bar over tasks.
-    pose : {"small", "rotvec", "euler_xyz", "all"}
+    pose : {"small", "rotvec", "euler_xyz", "all", "stats"}
         The pose convention (``POSE_CONVENTIONS``): the small-rotation fit (default; the only
         one of a linear run) or, for a non-linear run, the exact rigid registration of the stage
         nodes as translation + rotation vector or as intrinsic Euler XYZ angles; ``"all"``: the
@@ -329,8 +329,9 @@ def run_keeping_failures(
     -------
     index : ndarray (m,) of int
         Rows of ``design`` that have a result, increasing.
-    poses : ndarray (m, 6)
-        Their poses [µm, µrad].
+    poses : ndarray (m, k)
+        Their rows: poses (6 or, with ``pose="all"``, 18) [µm, µrad], or with ``pose="stats"``
+        the solve statistics (4).
     failures : list of FailedRun
         The other rows, by index, with their forces, last residual and error.
     """

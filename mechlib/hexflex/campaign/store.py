@@ -35,7 +35,7 @@ from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 
 #: Format of ``manifest.json`` and ``results.npz`` this code reads and writes.
-STORE_VERSION = 1
+STORE_VERSION = 2
 MANIFEST = "manifest.json"
 RESULTS = "results.npz"
 #: manifest fields every store has (the build wing may add more: commit, processor, timings)

@@ -9,6 +9,7 @@ results store (:mod:`mechlib.hexflex.campaign.store`) and the cold checks
 
 from __future__ import annotations
 
+import ast
 import concurrent.futures as cf
 import hashlib
 import json
@@ -30,15 +31,31 @@ def model_code_fingerprint() -> str:
     mesh, FE model, solver, pose fit …).
 
     Part of every cache key, so that a change to the mesher or the solver can never return
-    results computed by the old code.
+    results computed by the old code. A package whose ``__init__.py`` holds only its docstring
+    (what the package is for) defines nothing and is left out, so that rewording it keeps the
+    cache and the results store.
     """
     import importlib.util
 
     h = hashlib.sha256()
     for name in model_modules():
+        source = Path(importlib.util.find_spec(name).origin).read_bytes()
+        if not _defines_code(source):
+            continue
         h.update(name.encode())
-        h.update(Path(importlib.util.find_spec(name).origin).read_bytes())
+        h.update(source)
     return h.hexdigest()[:16]
+
+
+def _defines_code(source: bytes) -> bool:
+    """True if a module's source has a statement besides its docstring and ``__future__``
+    imports."""
+    body = ast.parse(source).body
+    return any(
+        not (isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant))
+        and not (isinstance(s, ast.ImportFrom) and s.module == "__future__")
+        for s in body
+    )
 
 
 def task_key(spec: str, kind: str, forces: np.ndarray, steps: int, fingerprint: str) -> str:

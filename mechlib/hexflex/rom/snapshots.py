@@ -15,12 +15,8 @@ from pathlib import Path
 import numpy as np
 
 from mechlib.hexflex.campaign.executors import InProcessExecutor
-from mechlib.hexflex.campaign.experiments import (
-    ModelSpec,
-    check_forces_design,
-    model_code_fingerprint,
-    solver_for,
-)
+from mechlib.hexflex.campaign.experiments import ModelSpec, check_forces_design, solver_for
+from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
 
 _VERSION = 1
 

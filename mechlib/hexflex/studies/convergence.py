@@ -11,13 +11,12 @@ import numpy as np
 
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.fe.model import (
-    AL7075_POISSON,
-    AL7075_YOUNG_MPA,
     COARSE_WIDTHS,
     ELEMENTS,
     HexFlexModel,
     coarsening_for,
 )
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
 from mechlib.hexflex.identify import target_values
 from mechlib.params import check_float
 

@@ -18,8 +18,13 @@ import numpy as np
 
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.fe.model import AL7075_POISSON, AL7075_YOUNG_MPA, compliance_maker, model_maker
-from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
+from mechlib.hexflex.fe.model import compliance_maker, model_maker
+from mechlib.hexflex.geometry import (
+    AL7075_POISSON,
+    AL7075_YOUNG_MPA,
+    DIMENSION_BOUNDS,
+    HexFlexGeometry,
+)
 from mechlib.params import check_float
 
 #: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
