@@ -32,6 +32,7 @@ from mechlib.hexflex.campaign.taskcache import (
     task_key,
 )
 from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
+from mechlib.hexflex.fe.lean import lean_model
 from mechlib.hexflex.fe.model import (
     HexFlexModel,
     check_forces,
@@ -59,6 +60,8 @@ POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
 RESULT_COLUMNS = {"linear": 6, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
+#: FE mesh recipes a :class:`ModelSpec` names
+MESHES: tuple[str, ...] = ("default", "lean")
 
 
 @dataclass(frozen=True)
@@ -73,9 +76,18 @@ class ModelSpec:
     #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
     #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
     quad_order: int = QUAD_ORDER
+    #: the mesh recipe: ``"default"`` (:class:`HexFlexModel`, flexure elements ``mesh_size``) or
+    #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`: its own sizes, Q2 only)
+    mesh: str = "default"
 
     def __post_init__(self) -> None:
         check_int("quad_order", self.quad_order, low=2, high=10)
+        check_choice("mesh", self.mesh, MESHES)
+        if self.mesh == "lean" and (self.mesh_size is not None or self.element != "q2"):
+            raise ValueError(
+                f"mesh 'lean' sets its own element sizes and is Q2: mesh_size must be None and "
+                f"element 'q2', got mesh_size={self.mesh_size!r}, element={self.element!r}"
+            )
 
     def key(self) -> str:
         """Stable text of the specification (cache key ingredient)."""
@@ -84,6 +96,8 @@ class ModelSpec:
 
     def build(self) -> HexFlexModel:
         """A fresh model (assembly and factorisation)."""
+        if self.mesh == "lean":
+            return lean_model(self.geometry, young=self.young, poisson=self.poisson)
         return HexFlexModel(
             self.geometry,
             young=self.young,

@@ -10,9 +10,11 @@ import ast
 import importlib.util
 from pathlib import Path
 
-#: The modules a task runs (the linear model, the non-linear solver, the finite-rotation pose).
+#: The modules a task runs (the linear model, the lean model, the non-linear solver, the
+#: finite-rotation pose).
 TASK_MODULES: tuple[str, ...] = (
     "mechlib.hexflex.fe.model",
+    "mechlib.hexflex.fe.lean",
     "mechlib.hexflex.fe.nonlinear",
     "mechlib.hexflex.fe.finite_pose",
 )

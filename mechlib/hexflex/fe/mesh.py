@@ -37,7 +37,9 @@ class PlanarMesh:
     quads: np.ndarray
 
 
-def structured_pieces(g: HexFlexGeometry, size: float) -> list[tuple[tuple, tuple, tuple]]:
+def structured_pieces(
+    g: HexFlexGeometry, size: float, mid_widths: float = MID_WIDTHS
+) -> list[tuple[tuple, tuple, tuple]]:
     """The flexure rectangles of the half-leg and their structured gmsh grids.
 
     Returns
@@ -47,14 +49,15 @@ def structured_pieces(g: HexFlexGeometry, size: float) -> list[tuple[tuple, tupl
         curves running along ``s`` and along ``r``: gmsh node count (before the all-quad
         subdivision doubles the elements) and the "Bump" end/middle ratio, or None for uniform.
         Shared curves get the same count: the corner takes the D1 segment's count across it
-        along ``r`` and the radial segment's along ``s``.
+        along ``r`` and the radial segment's along ``s``. ``mid_widths``: the elements' length
+        mid-way along a flexure, in its widths (``sector_mesh``).
     """
     rects = g.rectangles()
     (beam,), (corner,), (radial,) = rects["beam"], rects["corner"], rects["radial"]
     across_b = _across(g.beam_width, size)
     across_r = _across(g.radial_width, size)
-    along_b = _along(g.beam_width, across_b, beam[3] - beam[2])
-    along_r = _along(g.radial_width, across_r, radial[1] - radial[0])
+    along_b = _along(g.beam_width, across_b, beam[3] - beam[2], mid_widths)
+    along_r = _along(g.radial_width, across_r, radial[1] - radial[0], mid_widths)
     return [
         (beam, along_b, (across_b + 1, None)),
         (corner, (across_r + 1, None), (across_b + 1, None)),
@@ -67,32 +70,45 @@ def _across(width: float, size: float) -> int:
     return int(np.ceil(width / (2 * size) - 1e-9))
 
 
-def _along(width: float, across: int, length: float) -> tuple[int, float | None]:
+def _along(width: float, across: int, length: float, mid_widths: float) -> tuple[int, float | None]:
     """gmsh nodes along a flexure and its bump ratio (None: uniform)."""
-    end, middle = _along_sizes(width, across)
+    end, middle = _along_sizes(width, across, mid_widths)
     if end / middle < 1.0 and length > 4 * middle:  # graded: `end` at both ends, ~`middle` mid-way
         return int(np.ceil(BUMP_FACTOR * length / middle)) + 1, end / middle
     return int(np.ceil(length / end - 1e-9)) + 1, None
 
 
-def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING) -> PlanarMesh:
+def sector_mesh(
+    g: HexFlexGeometry,
+    size: float,
+    coarsening: float = COARSENING,
+    body_grading: float | None = None,
+    mid_widths: float = MID_WIDTHS,
+) -> PlanarMesh:
     """All-quad mesh of the 30°–90° sector: structured in the flexures, free elsewhere.
 
     Every flexure segment (D1 segment, corner, radial segment) is a structured grid with an even
     number of elements across its width (at most ``size`` [mm] wide, at least two); along it
     the elements are ``BEAM_ASPECT`` times longer than wide at both ends and grow toward
-    ``MID_WIDTHS`` flexure widths mid-way. The stage and tab are meshed freely with elements
-    growing from ``size`` at the flexures' corners to ``coarsening * size``.
+    ``mid_widths`` flexure widths mid-way (default ``MID_WIDTHS``, in [``BEAM_ASPECT``, 8]).
+    The stage and tab are meshed freely with elements growing from ``size`` at the flexures'
+    corners to ``coarsening * size``: by default the sizes set at the corners are interpolated
+    along the boundary curves; with ``body_grading`` [mm/mm] the size grows
+    linearly with the distance ``d`` from the nearest flexure corner, ``size + body_grading *
+    d``, capped at ``coarsening * size`` (the nearly rigid stage and tabs can then take much
+    larger elements without coarsening the joints).
 
     Raises
     ------
     ValueError
-        If ``size`` is larger than the narrowest flexure or not positive.
+        If ``size`` is larger than the narrowest flexure or not positive, or ``mid_widths`` or
+        ``body_grading`` is out of range.
     """
     size = check_float("mesh_size [mm]", size, low=0.0, high=g.narrowest, low_open=True)
     import gmsh
 
-    pieces = structured_pieces(g, size)
+    mid_widths = check_float("mid_widths", mid_widths, low=BEAM_ASPECT, high=8.0)
+    pieces = structured_pieces(g, size, mid_widths)
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -130,12 +146,18 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
                 gmsh.model.mesh.setTransfiniteSurface(tag)
         coarse = max(size, coarsening * size)
         fine_xy = np.asarray(fine)
+        near_tags = []
         for dim_tag in gmsh.model.getEntities(0):
             xyz = gmsh.model.getValue(0, dim_tag[1], [])
             near = np.min(np.hypot(*(fine_xy - xyz[:2]).T)) < 1e-6 * g.tab_outer
+            if near:
+                near_tags.append(dim_tag[1])
             gmsh.model.mesh.setSize([dim_tag], 2 * (size if near else coarse))
         gmsh.option.setNumber("Mesh.MeshSizeMax", 2 * coarse)
-        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 1)
+        if body_grading is None:
+            gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 1)
+        else:
+            _graded_field(gmsh, near_tags, 2 * size, 2 * coarse, body_grading)
         gmsh.option.setNumber("Mesh.Algorithm", 8)
         gmsh.option.setNumber("Mesh.RecombineAll", 1)
         gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 1)  # all quads
@@ -157,9 +179,28 @@ def sector_mesh(g: HexFlexGeometry, size: float, coarsening: float = COARSENING)
     return _orient(PlanarMesh(xy[used], remap[quads]))
 
 
-def _along_sizes(width: float, across: int) -> tuple[float, float]:
+def _graded_field(gmsh, point_tags: list[int], small: float, large: float, grading: float) -> None:
+    """Background size field on every surface: ``small`` at the points, growing to ``large``
+    (gmsh sizes, before the subdivision halves them) so that the final elements grow by
+    ``grading`` per unit distance from the nearest point."""
+    grading = check_float("body_grading", grading, low=0.0, low_open=True)
+    field = gmsh.model.mesh.field
+    dist = field.add("Distance")
+    field.setNumbers(dist, "PointsList", point_tags)
+    ramp = field.add("Threshold")
+    field.setNumber(ramp, "InField", dist)
+    field.setNumber(ramp, "SizeMin", small)
+    field.setNumber(ramp, "SizeMax", large)
+    field.setNumber(ramp, "DistMin", 0.0)
+    field.setNumber(ramp, "DistMax", max((large - small) / (2 * grading), 1e-9))
+    field.setAsBackgroundMesh(ramp)
+    gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+    gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+
+
+def _along_sizes(width: float, across: int, mid_widths: float) -> tuple[float, float]:
     """gmsh element lengths (before the subdivision halves them) at the ends and mid-way."""
-    return 2 * BEAM_ASPECT * width / (2 * across), 2 * MID_WIDTHS * width
+    return 2 * BEAM_ASPECT * width / (2 * across), 2 * mid_widths * width
 
 
 def signed_areas(m: PlanarMesh) -> np.ndarray:

@@ -82,6 +82,13 @@ class HexFlexModel:
     body_factor : float
         Stiffness multiplier of the stage and tabs, in [1, 1e6] (1: the real part; large: a
         nearly rigid body, the reduced beam model's assumption).
+    body_grading : float, optional
+        Grade the stage and tabs' elements from ``mesh_size`` at the flexures' corners by this
+        size gradient [mm/mm], > 0, up to ``coarsening * mesh_size`` (``mesh.sector_mesh``);
+        default None: the default meshing.
+    mid_widths : float
+        Length of the flexures' elements mid-way along them, in flexure widths, in
+        [``mesh.BEAM_ASPECT``, 8] (default ``mesh.MID_WIDTHS``).
     """
 
     geometry: geo.HexFlexGeometry = field(default_factory=geo.HexFlexGeometry)
@@ -91,6 +98,8 @@ class HexFlexModel:
     coarsening: float | None = None
     element: str = "q2"
     body_factor: float = 1.0
+    body_grading: float | None = None
+    mid_widths: float = ms.MID_WIDTHS
     timings: dict[str, float] = field(default_factory=dict, init=False)
 
     def __post_init__(self) -> None:
@@ -107,7 +116,13 @@ class HexFlexModel:
             self.coarsening = coarsening_for(COARSE_WIDTHS, self.mesh_size / g.narrowest)
         self.coarsening = check_float("coarsening", self.coarsening, low=1.0, high=64.0)
         t0 = time.perf_counter()
-        sector = ms.sector_mesh(g, self.mesh_size, self.coarsening)
+        sector = ms.sector_mesh(
+            g,
+            self.mesh_size,
+            self.coarsening,
+            self.body_grading,
+            self.mid_widths,
+        )
         self.planar = ms.full_mesh(sector, self.mesh_size)
         t1 = time.perf_counter()
         self.fe = fe.build(g, self.planar, self.element, self.young, self.poisson, self.body_factor)

@@ -1,0 +1,107 @@
+"""The lean FE mesh against the default one on non-linear runs, after re-identification.
+
+A cheaper model is judged by what the book reports, not by its compliance at fixed dimensions:
+the lean model (:func:`mechlib.hexflex.fe.lean.lean_model`) is first fitted to the magnitudes the
+default model achieves (:func:`fit_lean`), then both solve the same non-linear runs, and
+:func:`compare` states each pose component's difference as % of its range and the difference of
+the departures from linearity (each model's non-linear minus its own linear pose) as % of the
+default model's largest departure of that component. The criteria (``POSE_PCT``,
+``DEPARTURE_PCT``) are those a cheaper run must meet to replace the default one in the book's
+non-linear campaigns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from mechlib.hexflex import frame
+from mechlib.hexflex import identify as ident
+from mechlib.hexflex.fe.lean import lean_model
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
+from mechlib.params import check_float, check_matrix
+
+#: Poses within this % of each component's range, departures within this % of themselves.
+POSE_PCT, DEPARTURE_PCT = 0.1, 1.0
+#: The lean fit's tolerance (max |log(achieved / target)|): a tenth of the model page's 1e-3,
+#: so that the comparison measures the mesh and not where two fits stopped within 0.1 %.
+FIT_TOL = 1e-4
+MAX_EVALUATIONS = 20
+#: The dimensions the model page fits.
+FREE = ("thickness", "beam_width", "beam_length", "radial_length")
+
+
+def fit_lean(
+    geometry: HexFlexGeometry,
+    achieved: np.ndarray,
+    young: float = AL7075_YOUNG_MPA,
+    poisson: float = AL7075_POISSON,
+    free: Sequence[str] = FREE,
+    tol: float = FIT_TOL,
+    max_evaluations: int = MAX_EVALUATIONS,
+) -> ident.Identification:
+    """The lean model's geometry that meets ``achieved`` (the four magnitudes of
+    :data:`mechlib.hexflex.identify.TARGET_LABELS`, e.g. the default model's), from ``geometry``
+    (the default model's), by :func:`mechlib.hexflex.identify.identify` with the beam model's
+    sensitivities. Raises :class:`mechlib.hexflex.identify.IdentificationError` if it does not
+    converge within ``max_evaluations`` lean models."""
+    return ident.identify(
+        geometry,
+        np.abs(np.asarray(achieved, dtype=float)),
+        list(free),
+        lambda g: lean_model(g, young=young, poisson=poisson).compliance(),
+        frame.compliance_maker(young, poisson),
+        max_evaluations=max_evaluations,
+        tol=tol,
+    )
+
+
+def sweep_design(run: object, amplitudes: Sequence[float]) -> np.ndarray:
+    """Force vectors (n, 6) [N] along ``run`` (6,), scaled so that its largest |force| is each of
+    ``amplitudes`` [N] (> 0): the DOE chapter's linear-range sweep."""
+    f = check_matrix("run", np.atleast_2d(np.asarray(run, dtype=float)), shape=(1, 6))[0]
+    top = float(np.abs(f).max())
+    if top == 0.0:
+        raise ValueError("run must have a non-zero force, got all zeros")
+    amps = [check_float("amplitudes [N]", a, low=0.0, low_open=True) for a in amplitudes]
+    return np.outer(amps, f / top)
+
+
+def compare(
+    default_nl: np.ndarray,
+    default_linear: np.ndarray,
+    lean_nl: np.ndarray,
+    lean_linear: np.ndarray,
+    ranges: np.ndarray,
+) -> dict[str, np.ndarray]:
+    """Per pose component (6,): ``pose_pct`` = largest |lean − default| non-linear pose as % of
+    ``ranges`` (6,); ``departure_pct`` = largest |lean departure − default departure| as % of
+    the default model's largest |departure|. Poses (n, 6) [µm, µrad] of the same runs.
+
+    Raises
+    ------
+    ValueError
+        If the arrays' shapes differ, a range is not positive, or the default model departs
+        nowhere from linearity in a component (nothing to compare against).
+    """
+    arrays = [
+        np.asarray(a, dtype=float) for a in (default_nl, default_linear, lean_nl, lean_linear)
+    ]
+    shape = arrays[0].shape
+    if len(shape) != 2 or shape[1] != 6 or any(a.shape != shape for a in arrays):
+        raise ValueError(
+            f"poses must be four arrays of one shape (n, 6), got {[a.shape for a in arrays]}"
+        )
+    ranges = np.asarray(ranges, dtype=float)
+    if ranges.shape != (6,) or not np.all(ranges > 0):
+        raise ValueError(f"ranges must be 6 positive values, got {ranges}")
+    d_nl, d_lin, l_nl, l_lin = arrays
+    dep_default, dep_lean = d_nl - d_lin, l_nl - l_lin
+    scale = np.abs(dep_default).max(axis=0)
+    if not np.all(scale > 0):
+        raise ValueError("the default model's departure from linearity is zero in a component")
+    return {
+        "pose_pct": 100 * np.abs(l_nl - d_nl).max(axis=0) / ranges,
+        "departure_pct": 100 * np.abs(dep_lean - dep_default).max(axis=0) / scale,
+    }
