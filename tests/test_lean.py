@@ -82,9 +82,9 @@ def test_mesh_options_and_recipe_refuse_bad_input() -> None:
         ms.sector_mesh(SMALL, size, body_grading=0.0)
     with pytest.raises(ValueError, match="mesh"):
         ex.ModelSpec(SMALL, mesh="coarse")
-    with pytest.raises(ValueError, match="mesh_size must be None"):
-        ex.ModelSpec(SMALL, mesh="lean", mesh_size=1.0)
-    with pytest.raises(ValueError, match="element 'q2'"):
+    with pytest.raises(ValueError, match="pose_mesh_size"):
+        ex.ModelSpec(SMALL, mesh="lean", mesh_size=2.0).build()  # wider than the flexures
+    with pytest.raises(ValueError, match="element must be 'q2'"):
         ex.ModelSpec(SMALL, mesh="lean", element="shell")
 
 
@@ -148,3 +148,39 @@ def test_lean_fit_fits_the_lean_model() -> None:
     assert fit.n_evaluations == 1 and fit.geometry == SMALL
     with pytest.raises(ident.IdentificationError):
         leanmesh.fit_lean(SMALL, 1.001 * np.abs(own), max_evaluations=1)
+
+
+def test_compare_runs_keeps_the_runs_both_solved_and_splits_the_sweep() -> None:
+    rng = np.random.default_rng(2)
+    lin = rng.standard_normal((6, 6))
+    nl = lin + 0.1 * rng.standard_normal((6, 6))
+    ok_d, ok_l = np.array([0, 1, 2, 4, 5]), np.array([0, 2, 3, 4, 5])
+    parts, both = leanmesh.compare_runs(
+        (ok_d, nl[ok_d], lin), (ok_l, nl[ok_l] + 1e-3, lin), 3, np.ones(6)
+    )
+    np.testing.assert_array_equal(both, [0, 2, 4, 5])
+    assert set(parts) == {"runs", "sweep"}
+    np.testing.assert_allclose(parts["runs"]["pose_pct"], 0.1)
+    only_runs, _ = leanmesh.compare_runs(
+        (ok_d, nl[ok_d], lin), (ok_d, nl[ok_d], lin), 6, np.ones(6)
+    )
+    assert set(only_runs) == {"runs"}
+    with pytest.raises(RuntimeError, match="no run converged on both"):
+        leanmesh.compare_runs(
+            (np.array([1]), nl[[1]], lin), (np.array([2]), nl[[2]], lin), 3, np.ones(6)
+        )
+
+
+def test_a_lean_campaign_task_gives_every_pose_convention() -> None:
+    spec = ex.ModelSpec(SMALL, mesh="lean")
+    forces = np.array([[0.2, -0.1, 0.15, 0.05, -0.2, 0.1]])
+    out = ex.run_experiments(spec, forces, kind="nonlinear", pose="all", progress=False)
+    assert out.shape == (1, 18) and np.all(np.isfinite(out))
+    model = ex.model_for(spec)
+    solver = ex.solver_for(spec)
+    u, _ = solver.solve(forces[0])
+    np.testing.assert_allclose(out[0, :6], model.pose_of(u), rtol=1e-6)
+    # at these loads the three conventions agree to the small-rotation fit's order
+    np.testing.assert_allclose(out[0, 6:12], out[0, :6], rtol=0.05, atol=1e-3 * np.abs(out).max())
+    with pytest.raises(NotImplementedError, match="use poses"):
+        model.poses_plain_sfepy(forces)

@@ -77,17 +77,17 @@ class ModelSpec:
     #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
     quad_order: int = QUAD_ORDER
     #: the mesh recipe: ``"default"`` (:class:`HexFlexModel`, flexure elements ``mesh_size``) or
-    #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`: its own sizes, Q2 only)
+    #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`, Q2 only: its own element sizes, its
+    #: pose fitted at the stage vertices of the default mesh of size ``mesh_size``, the default
+    #: model it stands for; its geometry should be fitted to that model's magnitudes by
+    #: :func:`mechlib.hexflex.studies.leanmesh.fit_lean`, or it is a few % off them)
     mesh: str = "default"
 
     def __post_init__(self) -> None:
         check_int("quad_order", self.quad_order, low=2, high=10)
         check_choice("mesh", self.mesh, MESHES)
-        if self.mesh == "lean" and (self.mesh_size is not None or self.element != "q2"):
-            raise ValueError(
-                f"mesh 'lean' sets its own element sizes and is Q2: mesh_size must be None and "
-                f"element 'q2', got mesh_size={self.mesh_size!r}, element={self.element!r}"
-            )
+        if self.mesh == "lean" and self.element != "q2":
+            raise ValueError(f"mesh 'lean' is Q2: element must be 'q2', got {self.element!r}")
 
     def key(self) -> str:
         """Stable text of the specification (cache key ingredient)."""
@@ -97,7 +97,9 @@ class ModelSpec:
     def build(self) -> HexFlexModel:
         """A fresh model (assembly and factorisation)."""
         if self.mesh == "lean":
-            return lean_model(self.geometry, young=self.young, poisson=self.poisson)
+            return lean_model(
+                self.geometry, young=self.young, poisson=self.poisson, pose_mesh_size=self.mesh_size
+            )
         return HexFlexModel(
             self.geometry,
             young=self.young,

@@ -8,19 +8,25 @@ quantity of interest itself (z←T1D2 and θx←T1D2 by 1–5 % at fixed dimensi
 discretisation error.
 
 :class:`StageFitModel` keeps that definition whatever its own mesh: its pose is the same rigid
-fit over the stage vertices of the *default* mesh of the same geometry (meshed, not solved),
-with the displacements there interpolated from the model's own Q2 field by a sparse matrix built
-once. With the default mesh it reproduces the default model's poses exactly.
+fit over the stage vertices of a *default* mesh of the same geometry (meshed, not solved; its
+flexure element size ``pose_mesh_size``), with the displacements there interpolated from the
+model's own Q2 field by a sparse matrix built once. On that default mesh itself it reproduces
+the default model's poses to the precision of the interpolation points' reference coordinates
+(≈ 1e-8 of an element).
 
-:func:`lean_model` is the recipe the cheaper non-linear runs use (``LEAN``): two Q2 elements
-across every flexure (``mesh_size`` 0.6 of the narrowest width), flexure elements growing to
-``LEAN["mid_widths"]`` widths mid-way, stage and tabs graded from the flexures' corners to 30
-narrowest widths, the pose fitted as by the default model. Identified to Eq 8 like the default
-model, it gives the same non-linear poses within a small fraction of their range at a fraction
-of the cost (``make bench``, section ``lean``).
+:func:`lean_model` is the recipe the cheaper non-linear runs use (``LEAN``): flexure elements
+0.6 of the narrowest flexure width (two across the narrowest), growing to ``LEAN["mid_widths"]``
+widths mid-way along each flexure, stage and tabs graded from the flexures' corners up to 30
+narrowest widths, the pose fitted as by the default model. A lean model stands for the default
+model it was fitted to (:func:`mechlib.hexflex.studies.leanmesh.fit_lean`: the same magnitudes
+of the compliance); on the identified HexFlex it gives the same non-linear poses within a small
+fraction of their range at a fraction of the cost (``make bench``, section ``lean``).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 import scipy.sparse as sp
@@ -35,25 +41,24 @@ from mechlib.hexflex.fe.model import (
     coarsening_for,
 )
 from mechlib.hexflex.fe.pose import fit_operator
+from mechlib.params import check_float
 
 #: The lean mesh: flexure element size (fraction of the narrowest flexure width), largest
 #: stage and tab element (narrowest widths), their size gradient (``mesh.sector_mesh``'s
 #: ``body_grading``) and the flexure elements' length mid-way (widths).
-LEAN: dict[str, float] = {
-    "mesh_fraction": 0.6,
-    "coarse_widths": 30.0,
-    "body_grading": 1.0,
-    "mid_widths": 4.0,
-}
+LEAN = MappingProxyType(
+    {"mesh_fraction": 0.6, "coarse_widths": 30.0, "body_grading": 1.0, "mid_widths": 4.0}
+)
 #: Largest excursion of a stage vertex's reference coordinates outside [0, 1] that is taken as
 #: round-off (the vertices lie on element faces) and clipped; more is an error.
 REF_TOL = 1e-6
 
 
-def default_stage_points(g: geo.HexFlexGeometry) -> np.ndarray:
-    """The stage vertices (n, 3) [mm] the default model of ``g`` fits its pose on."""
-    size = DEFAULT_MESH_FRACTION * g.narrowest
-    sector = ms.sector_mesh(g, size, coarsening_for(COARSE_WIDTHS, DEFAULT_MESH_FRACTION))
+def default_stage_points(g: geo.HexFlexGeometry, size: float | None = None) -> np.ndarray:
+    """The stage vertices (n, 3) [mm] the default model of ``g`` with flexure elements ``size``
+    [mm] (default ``DEFAULT_MESH_FRACTION`` of the narrowest flexure width) fits its pose on."""
+    size = DEFAULT_MESH_FRACTION * g.narrowest if size is None else size
+    sector = ms.sector_mesh(g, size, coarsening_for(COARSE_WIDTHS, size / g.narrowest))
     coors, _ = ms.extrude(ms.full_mesh(sector, size), g.thickness)
     return coors[geo.in_stage(coors, g)]
 
@@ -62,10 +67,13 @@ def interpolation_matrix(model: HexFlexModel, points: np.ndarray) -> sp.csr_arra
     """Sparse (3 n, n_dofs): the model's reduced displacement vector → displacements at
     ``points`` (n, 3) [mm] inside its mesh, x y z per point, by its Q2 interpolation.
 
+    A point on an element's face or edge gets reference coordinates outside [0, 1] by round-off;
+    excursions up to ``REF_TOL`` are clipped to the element, larger ones are refused.
+
     Raises
     ------
     ValueError
-        If a point lies outside the mesh, or in an element with clamped nodes.
+        If points lie outside the mesh, or in elements with clamped nodes (how many).
     """
     from sfepy.discrete.common.global_interp import get_ref_coors
 
@@ -82,10 +90,14 @@ def interpolation_matrix(model: HexFlexModel, points: np.ndarray) -> sp.csr_arra
     econn = fld.get_econn(("cell", fld.region.tdim), fld.region)[cells]  # (n, nodes/element)
     eq = model.fe.eq.reshape(-1, model.fe.n_comp)
     rows, cols, vals = [], [], []
+    clamped = np.any(eq[econn] < 0, axis=(1, 2))
+    if np.any(clamped):
+        raise ValueError(
+            f"points must lie in elements without clamped nodes: {int(clamped.sum())} of "
+            f"{len(pts)} do not"
+        )
     for c in range(3):
         dofs = eq[econn, c]
-        if np.any(dofs < 0):
-            raise ValueError("points must lie in elements without clamped nodes")
         rows.append(np.repeat(3 * np.arange(len(pts)) + c, econn.shape[1]))
         cols.append(dofs.ravel())
         vals.append(basis.ravel())
@@ -93,13 +105,31 @@ def interpolation_matrix(model: HexFlexModel, points: np.ndarray) -> sp.csr_arra
     return sp.csr_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape)
 
 
+@dataclass
 class StageFitModel(HexFlexModel):
-    """:class:`HexFlexModel` whose pose is fitted at the default mesh's stage vertices
-    (interpolated from its own field), whatever its own stage mesh. Same parameters."""
+    """:class:`HexFlexModel` whose pose is fitted at a default mesh's stage vertices
+    (interpolated from its own field), whatever its own stage mesh.
+
+    Parameters
+    ----------
+    (those of :class:`HexFlexModel`), and
+    pose_mesh_size : float, optional
+        Flexure element size [mm] of the default mesh whose stage vertices define the pose
+        (default: ``DEFAULT_MESH_FRACTION`` of the narrowest flexure width), in (0, the
+        narrowest flexure width].
+    """
+
+    pose_mesh_size: float | None = None
 
     def __post_init__(self) -> None:
+        g = self.geometry
+        if self.pose_mesh_size is not None:
+            self.pose_mesh_size = check_float(
+                "pose_mesh_size [mm]", self.pose_mesh_size, low=0.0, high=g.narrowest,
+                low_open=True,
+            )  # fmt: skip
         super().__post_init__()
-        self._points = default_stage_points(self.geometry)
+        self._points = default_stage_points(g, self.pose_mesh_size)
         self._interp = interpolation_matrix(self, self._points)
         self._fit = fit_operator(self._points)
 
@@ -113,12 +143,23 @@ class StageFitModel(HexFlexModel):
         interpolated: what :meth:`pose_of` fits."""
         return self._points, (self._interp @ np.asarray(reduced)).reshape(-1, 3)
 
+    def poses_plain_sfepy(self, forces: object) -> np.ndarray:
+        """Not available: SfePy's plain path fits the pose on the model's own stage nodes."""
+        raise NotImplementedError(
+            "poses_plain_sfepy fits the pose on the model's own stage nodes; a StageFitModel "
+            "fits it elsewhere: use poses()"
+        )
+
 
 def lean_model(
-    geometry: geo.HexFlexGeometry, young: float | None = None, poisson: float | None = None
+    geometry: geo.HexFlexGeometry,
+    young: float | None = None,
+    poisson: float | None = None,
+    pose_mesh_size: float | None = None,
 ) -> StageFitModel:
-    """The lean model (``LEAN``) of ``geometry``; material as :class:`HexFlexModel`'s
-    defaults unless given."""
+    """The lean model (``LEAN``) of ``geometry``, its pose fitted at the stage vertices of the
+    default mesh with flexure elements ``pose_mesh_size`` [mm] (:class:`StageFitModel`);
+    material as :class:`HexFlexModel`'s defaults unless given."""
     fraction = LEAN["mesh_fraction"]
     material = {k: v for k, v in (("young", young), ("poisson", poisson)) if v is not None}
     return StageFitModel(
@@ -127,5 +168,6 @@ def lean_model(
         coarsening=coarsening_for(LEAN["coarse_widths"], fraction),
         body_grading=LEAN["body_grading"],
         mid_widths=LEAN["mid_widths"],
+        pose_mesh_size=pose_mesh_size,
         **material,
     )

@@ -108,6 +108,8 @@ def sector_mesh(
     import gmsh
 
     mid_widths = check_float("mid_widths", mid_widths, low=BEAM_ASPECT, high=8.0)
+    if body_grading is not None:
+        body_grading = check_float("body_grading", body_grading, low=0.0, low_open=True)
     pieces = structured_pieces(g, size, mid_widths)
     gmsh.initialize(interruptible=False)
     try:
@@ -183,7 +185,6 @@ def _graded_field(gmsh, point_tags: list[int], small: float, large: float, gradi
     """Background size field on every surface: ``small`` at the points, growing to ``large``
     (gmsh sizes, before the subdivision halves them) so that the final elements grow by
     ``grading`` per unit distance from the nearest point."""
-    grading = check_float("body_grading", grading, low=0.0, low_open=True)
     field = gmsh.model.mesh.field
     dist = field.add("Distance")
     field.setNumbers(dist, "PointsList", point_tags)

@@ -28,7 +28,8 @@ POSE_PCT, DEPARTURE_PCT = 0.1, 1.0
 #: so that the comparison measures the mesh and not where two fits stopped within 0.1 %.
 FIT_TOL = 1e-4
 MAX_EVALUATIONS = 20
-#: The dimensions the model page fits.
+#: The dimensions the model page fits by default (its ``free_dimensions``): the lean model is
+#: identified as the chapter's model was.
 FREE = ("thickness", "beam_width", "beam_length", "radial_length")
 
 
@@ -41,11 +42,31 @@ def fit_lean(
     tol: float = FIT_TOL,
     max_evaluations: int = MAX_EVALUATIONS,
 ) -> ident.Identification:
-    """The lean model's geometry that meets ``achieved`` (the four magnitudes of
-    :data:`mechlib.hexflex.identify.TARGET_LABELS`, e.g. the default model's), from ``geometry``
-    (the default model's), by :func:`mechlib.hexflex.identify.identify` with the beam model's
-    sensitivities. Raises :class:`mechlib.hexflex.identify.IdentificationError` if it does not
-    converge within ``max_evaluations`` lean models."""
+    """The lean model's geometry that meets ``achieved``, from the default model's ``geometry``.
+
+    Parameters
+    ----------
+    geometry : HexFlexGeometry
+        The default model's geometry: the start, and the dimensions not in ``free``.
+    achieved : array_like (4,)
+        The magnitudes to meet (:data:`mechlib.hexflex.identify.TARGET_LABELS`; their sizes are
+        taken), e.g. the default model's.
+    young, poisson : float
+        Material [MPa], [-].
+    free, tol, max_evaluations
+        As :func:`mechlib.hexflex.identify.identify` (which fits, with the beam model's
+        sensitivities).
+
+    Returns
+    -------
+    Identification
+        The lean geometry and the magnitudes it achieves.
+
+    Raises
+    ------
+    mechlib.hexflex.identify.IdentificationError
+        If no lean model within ``max_evaluations`` meets ``tol``.
+    """
     return ident.identify(
         geometry,
         np.abs(np.asarray(achieved, dtype=float)),
@@ -59,7 +80,13 @@ def fit_lean(
 
 def sweep_design(run: object, amplitudes: Sequence[float]) -> np.ndarray:
     """Force vectors (n, 6) [N] along ``run`` (6,), scaled so that its largest |force| is each of
-    ``amplitudes`` [N] (> 0): the DOE chapter's linear-range sweep."""
+    ``amplitudes`` [N] (> 0): the DOE chapter's linear-range sweep.
+
+    Raises
+    ------
+    ValueError
+        If ``run`` is not 6 finite forces with one non-zero, or an amplitude is not positive.
+    """
     f = check_matrix("run", np.atleast_2d(np.asarray(run, dtype=float)), shape=(1, 6))[0]
     top = float(np.abs(f).max())
     if top == 0.0:
@@ -75,9 +102,21 @@ def compare(
     lean_linear: np.ndarray,
     ranges: np.ndarray,
 ) -> dict[str, np.ndarray]:
-    """Per pose component (6,): ``pose_pct`` = largest |lean − default| non-linear pose as % of
-    ``ranges`` (6,); ``departure_pct`` = largest |lean departure − default departure| as % of
-    the default model's largest |departure|. Poses (n, 6) [µm, µrad] of the same runs.
+    """How far the lean model's non-linear poses and departures are from the default model's.
+
+    Parameters
+    ----------
+    default_nl, default_linear, lean_nl, lean_linear : ndarray (n, 6)
+        Non-linear and linear poses [µm, µrad] of the same runs on each model.
+    ranges : ndarray (6,)
+        Each component's range (> 0).
+
+    Returns
+    -------
+    dict
+        Per component (6,): ``pose_pct``, the largest |lean − default| non-linear pose as % of
+        ``ranges``; ``departure_pct``, the largest |lean departure − default departure| as % of
+        the default model's largest |departure| (a departure: non-linear minus linear pose).
 
     Raises
     ------
@@ -105,3 +144,49 @@ def compare(
         "pose_pct": 100 * np.abs(l_nl - d_nl).max(axis=0) / ranges,
         "departure_pct": 100 * np.abs(dep_lean - dep_default).max(axis=0) / scale,
     }
+
+
+def compare_runs(
+    default: tuple[np.ndarray, np.ndarray, np.ndarray],
+    lean: tuple[np.ndarray, np.ndarray, np.ndarray],
+    n_runs: int,
+    ranges: np.ndarray,
+) -> tuple[dict[str, dict[str, np.ndarray]], np.ndarray]:
+    """:func:`compare` on the runs both models solved, the first ``n_runs`` rows of the design
+    (``"runs"``) and the rest (``"sweep"``) apart.
+
+    Parameters
+    ----------
+    default, lean : tuple of ndarray
+        Each model's ``(ok, nl, linear)``: the design rows that converged (sorted), their
+        non-linear poses (len(ok), 6) and the linear poses of every row (n, 6).
+    n_runs : int
+        Rows of the design that are runs; the rest is the sweep.
+    ranges : ndarray (6,)
+        Each component's range (> 0).
+
+    Returns
+    -------
+    parts : dict
+        ``{"runs": compare(...), "sweep": compare(...)}``, a part left out when no row of it
+        converged on both models.
+    both : ndarray
+        The rows compared (converged on both).
+
+    Raises
+    ------
+    RuntimeError
+        If no row converged on both models.
+    """
+    (ok_d, nl_d, lin_d), (ok_l, nl_l, lin_l) = default, lean
+    both = np.intersect1d(ok_d, ok_l)
+    if not len(both):
+        raise RuntimeError("no run converged on both meshes")
+    nl_d, nl_l = nl_d[np.searchsorted(ok_d, both)], nl_l[np.searchsorted(ok_l, both)]
+    parts = {}
+    for part, rows in (("runs", both < n_runs), ("sweep", both >= n_runs)):
+        if rows.any():
+            parts[part] = compare(
+                nl_d[rows], lin_d[both][rows], nl_l[rows], lin_l[both][rows], ranges
+            )
+    return parts, both
