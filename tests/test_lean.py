@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import identify as ident
@@ -10,18 +11,6 @@ from mechlib.hexflex.fe import lean
 from mechlib.hexflex.fe import mesh as ms
 from mechlib.hexflex.fe.model import HexFlexModel
 from mechlib.hexflex.studies import leanmesh
-
-SMALL = geo.HexFlexGeometry(
-    stage_radius=12.0,
-    tab_half_width=2.0,
-    tab_outer=22.0,
-    beam_radius=11.0,
-    beam_width=1.0,
-    beam_length=8.0,
-    radial_width=1.0,
-    radial_length=5.0,
-    thickness=0.8,
-)
 
 
 @pytest.fixture(scope="module")
