@@ -173,3 +173,30 @@ def test_a_lean_campaign_task_gives_every_pose_convention() -> None:
     np.testing.assert_allclose(out[0, 6:12], out[0, :6], rtol=0.05, atol=1e-3 * np.abs(out).max())
     with pytest.raises(NotImplementedError, match="use poses"):
         model.poses_plain_sfepy(forces)
+
+
+def test_lean_stand_in_is_fitted_to_the_default_models_magnitudes(monkeypatch) -> None:
+    # the fit itself runs in the chapters on the identified member (SMALL's lean mesh is too
+    # far from its default one for the beam model's steps); here: what it is given and returns
+    calls = {}
+
+    def fake_fit(geometry, achieved, **kw):
+        calls.update(achieved=achieved, **kw)
+        return ident.Identification(
+            geometry.replace(thickness=geometry.thickness * 1.01), achieved, achieved, 3,
+            np.zeros((3, 8)),
+        )  # fmt: skip
+
+    monkeypatch.setattr(leanmesh, "fit_lean", fake_fit)
+    spec = ex.ModelSpec(SMALL, mesh_size=0.9 * SMALL.narrowest, quad_order=6)
+    stand_in, fit = leanmesh.lean_spec(spec, max_evaluations=7)
+    assert stand_in.mesh == "lean" and stand_in.geometry == fit.geometry != SMALL
+    assert (stand_in.mesh_size, stand_in.quad_order) == (spec.mesh_size, 6)
+    assert calls["pose_mesh_size"] == spec.mesh_size and calls["max_evaluations"] == 7
+    np.testing.assert_allclose(
+        calls["achieved"], ident.target_values(ex.model_for(spec).compliance())
+    )
+    with pytest.raises(ValueError, match="default-mesh Q2"):
+        leanmesh.lean_spec(stand_in)
+    with pytest.raises(ValueError, match="default-mesh Q2"):
+        leanmesh.lean_spec(ex.ModelSpec(SMALL, element="q1"))

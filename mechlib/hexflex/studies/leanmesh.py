@@ -13,11 +13,13 @@ non-linear campaigns.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
+from mechlib.hexflex.campaign.experiments import ModelSpec, model_for
 from mechlib.hexflex.fe.lean import lean_model
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_float, check_matrix
@@ -41,6 +43,7 @@ def fit_lean(
     free: Sequence[str] = FREE,
     tol: float = FIT_TOL,
     max_evaluations: int = MAX_EVALUATIONS,
+    pose_mesh_size: float | None = None,
 ) -> ident.Identification:
     """The lean model's geometry that meets ``achieved``, from the default model's ``geometry``.
 
@@ -56,6 +59,9 @@ def fit_lean(
     free, tol, max_evaluations
         As :func:`mechlib.hexflex.identify.identify` (which fits, with the beam model's
         sensitivities).
+    pose_mesh_size : float, optional
+        Flexure element size [mm] of the default mesh whose stage vertices carry the lean
+        model's pose (:func:`mechlib.hexflex.fe.lean.lean_model`); default: that model's default.
 
     Returns
     -------
@@ -71,11 +77,59 @@ def fit_lean(
         geometry,
         np.abs(np.asarray(achieved, dtype=float)),
         list(free),
-        lambda g: lean_model(g, young=young, poisson=poisson).compliance(),
+        lambda g: lean_model(
+            g, young=young, poisson=poisson, pose_mesh_size=pose_mesh_size
+        ).compliance(),
         frame.compliance_maker(young, poisson),
         max_evaluations=max_evaluations,
         tol=tol,
     )
+
+
+def lean_spec(
+    spec: ModelSpec, max_evaluations: int = MAX_EVALUATIONS
+) -> tuple[ModelSpec, ident.Identification]:
+    """The lean stand-in of the default-mesh model ``spec``: the lean mesh, its free dimensions
+    (``FREE``) fitted within ``FIT_TOL`` to the four magnitudes of ``spec``'s own FE compliance,
+    its pose read at the stage vertices of ``spec``'s mesh (same material and quadrature).
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        A default-mesh Q2 model (its linear model is built once in this process, if not yet).
+    max_evaluations : int
+        Lean FE models the fit may build (:func:`fit_lean`).
+
+    Returns
+    -------
+    stand_in : ModelSpec
+        ``spec`` with the fitted geometry and ``mesh="lean"`` (its ``mesh_size`` stays: the
+        default mesh whose stage vertices carry the pose).
+    fit : Identification
+        The lean fit (evaluations, achieved magnitudes).
+
+    Raises
+    ------
+    ValueError
+        If ``spec`` is not a default-mesh Q2 model.
+    mechlib.hexflex.identify.IdentificationError
+        If the fit does not meet ``FIT_TOL`` within ``max_evaluations``.
+    """
+    if spec.mesh != "default" or spec.element != "q2":
+        raise ValueError(
+            f"spec must be a default-mesh Q2 model, got mesh={spec.mesh!r}, "
+            f"element={spec.element!r}"
+        )
+    own = ident.target_values(model_for(spec).compliance())
+    fit = fit_lean(
+        spec.geometry,
+        own,
+        young=spec.young,
+        poisson=spec.poisson,
+        max_evaluations=max_evaluations,
+        pose_mesh_size=spec.mesh_size,
+    )
+    return replace(spec, geometry=fit.geometry, mesh="lean"), fit
 
 
 def sweep_design(run: object, amplitudes: Sequence[float]) -> np.ndarray:
