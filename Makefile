@@ -40,7 +40,7 @@ unexport PYTHONDONTWRITEBYTECODE
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
-	@echo "                 PROFILE=full: the full-size runs of notebooks/profiles/full/ (over an hour; see make bench)"
+	@echo "                 PROFILE=full: notebooks/profiles/full/ (a finer mesh-convergence study of the linear model)"
 	@echo "make test        unit tests + every notebook + reference comparison + book build and checks"
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
 	@echo "make rerun       execute every notebook again, cold, into build/rerun (make test compares records)"

@@ -73,8 +73,8 @@ RERUN_TEXT = """\
 ```{admonition} Re-run this page
 Each chapter is a notebook whose first cell holds its parameters.
 `make run NB=published_doe ARGS="-p n_random_designs 5000"` executes one into `build/runs/`
-without touching this build; `make book PROFILE=full` builds the whole book with the full-size
-experiments.
+without touching this build; `make book PROFILE=full` builds the whole book with a finer
+mesh-convergence study of the linear model.
 ```
 """
 
