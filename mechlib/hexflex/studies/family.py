@@ -13,12 +13,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.fe.model import compliance_maker, model_maker
+from mechlib.hexflex.campaign import compliance as cc
 from mechlib.hexflex.geometry import (
     AL7075_POISSON,
     AL7075_YOUNG_MPA,
@@ -159,6 +160,7 @@ def identify_member(
     tol: float = 1e-3,
     young: float = AL7075_YOUNG_MPA,
     poisson: float = AL7075_POISSON,
+    cache_dir: Path | None = None,
 ) -> Member:
     """The member of the family with plate ``thickness`` [mm]: ``free`` re-identified so that
     the Q2 FE model (flexure elements ``mesh_fraction`` of the narrowest width) meets ``target``.
@@ -182,6 +184,9 @@ def identify_member(
         |log(achieved / target)| over the four magnitudes that the member may keep.
     young, poisson : float
         Young's modulus [MPa] and Poisson's ratio of the FE and beam models.
+    cache_dir : Path, optional
+        FE cache of the compliances of the models built
+        (:mod:`mechlib.hexflex.campaign.compliance`).
 
     Returns
     -------
@@ -199,13 +204,15 @@ def identify_member(
     """
     g = start.replace(thickness=check_thickness(thickness))
     prefit, _ = frame.prefit(target, g, free, young, poisson)
-    make = model_maker(young=young, poisson=poisson, element="q2", mesh_fraction=mesh_fraction)
+    specs = cc.default_specs(
+        young=young, poisson=poisson, element="q2", mesh_fraction=mesh_fraction
+    )
     try:
         fit = ident.identify(
             prefit,
             target,
             free,
-            compliance_maker(make),
+            cc.compliance_maker(specs, cache_dir),
             frame.compliance_maker(young, poisson),
             max_evaluations=max_evaluations,
             tol=tol,

@@ -14,13 +14,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.campaign.experiments import ModelSpec, model_for
-from mechlib.hexflex.fe.lean import lean_model
+from mechlib.hexflex.campaign import compliance as cc
+from mechlib.hexflex.campaign.experiments import ModelSpec
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_float, check_matrix
 
@@ -44,6 +45,7 @@ def fit_lean(
     tol: float = FIT_TOL,
     max_evaluations: int = MAX_EVALUATIONS,
     pose_mesh_size: float | None = None,
+    cache_dir: Path | None = None,
 ) -> ident.Identification:
     """The lean model's geometry that meets ``achieved``, from the default model's ``geometry``.
 
@@ -62,6 +64,8 @@ def fit_lean(
     pose_mesh_size : float, optional
         Flexure element size [mm] of the default mesh whose stage vertices carry the lean
         model's pose (:func:`mechlib.hexflex.fe.lean.lean_model`); default: that model's default.
+    cache_dir : Path, optional
+        FE cache of the lean models' compliances (:mod:`mechlib.hexflex.campaign.compliance`).
 
     Returns
     -------
@@ -77,9 +81,9 @@ def fit_lean(
         geometry,
         np.abs(np.asarray(achieved, dtype=float)),
         list(free),
-        lambda g: lean_model(
-            g, young=young, poisson=poisson, pose_mesh_size=pose_mesh_size
-        ).compliance(),
+        cc.compliance_maker(
+            cc.lean_specs(young=young, poisson=poisson, pose_mesh_size=pose_mesh_size), cache_dir
+        ),
         frame.compliance_maker(young, poisson),
         max_evaluations=max_evaluations,
         tol=tol,
@@ -87,7 +91,7 @@ def fit_lean(
 
 
 def lean_spec(
-    spec: ModelSpec, max_evaluations: int = MAX_EVALUATIONS
+    spec: ModelSpec, max_evaluations: int = MAX_EVALUATIONS, cache_dir: Path | None = None
 ) -> tuple[ModelSpec, ident.Identification]:
     """The lean stand-in of the default-mesh model ``spec``: the lean mesh, its free dimensions
     (``FREE``) fitted within ``FIT_TOL`` to the four magnitudes of ``spec``'s own FE compliance,
@@ -99,6 +103,8 @@ def lean_spec(
         A default-mesh Q2 model (its linear model is built once in this process, if not yet).
     max_evaluations : int
         Lean FE models the fit may build (:func:`fit_lean`).
+    cache_dir : Path, optional
+        FE cache of every compliance the fit reads (``spec``'s and the lean models').
 
     Returns
     -------
@@ -120,7 +126,7 @@ def lean_spec(
             f"spec must be a default-mesh Q2 model, got mesh={spec.mesh!r}, "
             f"element={spec.element!r}"
         )
-    own = ident.target_values(model_for(spec).compliance())
+    own = ident.target_values(cc.compliance(spec, cache_dir))
     fit = fit_lean(
         spec.geometry,
         own,
@@ -128,6 +134,7 @@ def lean_spec(
         poisson=spec.poisson,
         max_evaluations=max_evaluations,
         pose_mesh_size=spec.mesh_size,
+        cache_dir=cache_dir,
     )
     return replace(spec, geometry=fit.geometry, mesh="lean"), fit
 
