@@ -56,3 +56,15 @@ def test_the_sample_is_seeded_and_refuses_bad_counts() -> None:
     assert a != cc.sample(entries, {"nonlinear": 4}, seed=1)
     with pytest.raises(ValueError, match="per_kind"):
         cc.sample(entries, {"nonlinear": -1})
+
+
+def test_the_sample_takes_a_task_of_every_model_first() -> None:
+    # a model with one task among thousands of another's is still checked
+    specs = ["rare"] + ["common"] * 300 + ["other"] * 50
+    entries = [{"file": f"{i}.npy", "kind": "nonlinear", "spec": s} for i, s in enumerate(specs)]
+    for seed in range(5):
+        picked = cc.sample(entries, {"nonlinear": 4}, seed=seed)
+        assert len(picked) == 4 and {e["spec"] for e in picked} == {"rare", "common", "other"}
+        assert len({e["file"] for e in picked}) == 4
+        two = cc.sample(entries, {"nonlinear": 2}, seed=seed)
+        assert len({e["spec"] for e in two}) == 2  # fewer draws than models: distinct models

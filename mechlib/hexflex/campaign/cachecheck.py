@@ -82,7 +82,8 @@ def spec_from_key(text: str) -> ModelSpec:
 
 def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEED) -> list[dict]:
     """A seeded sample of logged tasks: ``per_kind[kind]`` of each kind (all if fewer), in log
-    order.
+    order, spread over models: one task of every model (``spec``) first — of as many models,
+    drawn at random, when there are more models than draws —, the rest drawn from all others.
 
     Returns
     -------
@@ -94,8 +95,20 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
     for kind in KINDS:
         n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
         idx = [i for i, e in enumerate(entries) if e["kind"] == kind]
-        if n and idx:
-            chosen.extend(rng.choice(idx, size=min(n, len(idx)), replace=False).tolist())
+        if not (n and idx):
+            continue
+        groups: dict[str, list[int]] = {}
+        for i in idx:
+            groups.setdefault(entries[i].get("spec", ""), []).append(i)
+        order = rng.permutation(len(groups))[: min(n, len(groups))]
+        members = list(groups.values())
+        picked = [int(rng.choice(members[g])) for g in sorted(order)]
+        taken = set(picked)
+        rest = [i for i in idx if i not in taken]
+        extra = min(n - len(picked), len(rest))
+        chosen.extend(
+            picked + (rng.choice(rest, size=extra, replace=False).tolist() if extra else [])
+        )
     return [entries[i] for i in sorted(chosen)]
 
 
@@ -137,7 +150,7 @@ def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[Ca
     list of CacheCheck
         One per sampled task.
     """
-    logged = [{"file": f"{e.key}.npy", "kind": e.kind, "entry": e} for e in entries]
+    logged = [{"file": f"{e.key}.npy", "kind": e.kind, "spec": e.spec, "entry": e} for e in entries]
     picked = [d["entry"] for d in sample(logged, per_kind, seed)]
     return _recompute(
         [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked]
