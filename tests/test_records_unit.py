@@ -257,3 +257,46 @@ def test_report_rows_report_the_recorded_value() -> None:
     with pytest.raises(TypeError, match="a claim holds or not"):
         rec.value("t.num", 0.7, atol=0, row=report.Claim("T", "c", "e"))
     assert "t.bad" not in rec.values and "t.num" not in rec.values
+
+
+def test_the_rerun_runs_two_chapters_at_a_time_each_after_its_inputs(tmp_path: Path) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    stamp = "import time\nfrom mechlib.records import Recorder\n"
+    upstream = stamp + (  # the model page: slow, then the two values the DOE chapter reads
+        "time.sleep(3)\nrec = Recorder('hexflex_model')\n"
+        "rec.value('geometry.thickness', 0.5, rtol=0)\n"
+        "rec.value('model.mesh_fraction', 0.5, atol=0)\n"
+        "rec.value('done_at', time.time(), atol=1e9)\nrec.save()\n"
+    )
+    downstream_params = "geometry = None\nmesh_fraction = None\n"
+    downstream = stamp + (
+        "rec = Recorder('virtual_experiments')\n"
+        "rec.value('started_at', START, atol=1e9)\n"
+        "rec.value('got_inputs', geometry == {'thickness': 0.5} and mesh_fraction == 0.5)\n"
+        "rec.save()\n"
+    )
+    independent = stamp + (
+        "rec = Recorder('fivebar_identification')\n"
+        "rec.value('started_at', time.time(), atol=1e9)\nrec.save()\n"
+    )
+    for name, cells in (
+        ("hexflex_model", [upstream]),
+        (
+            "virtual_experiments",
+            [downstream_params, "import time\nSTART = time.time()", downstream],
+        ),
+        ("fivebar_identification", [independent]),
+    ):
+        nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in cells])
+        nb.cells[0].metadata["tags"] = ["parameters"] if name == "virtual_experiments" else []
+        nb.metadata["kernelspec"] = {"name": "python3", "language": "python", "display_name": "Py"}
+        nbformat.write(nb, notebooks / f"{name}.ipynb")
+    rerun(notebooks, tmp_path / "out", jobs=2)
+    got = {n: load(tmp_path / "out" / "records" / f"{n}.json")["values"] for n in
+           ("hexflex_model", "virtual_experiments", "fivebar_identification")}  # fmt: skip
+    assert got["virtual_experiments"]["got_inputs"]["value"] is True
+    done_at = got["hexflex_model"]["done_at"]["value"]
+    assert got["virtual_experiments"]["started_at"]["value"] >= done_at  # after its input
+    assert got["fivebar_identification"]["started_at"]["value"] < done_at  # beside the slow chapter

@@ -4,6 +4,7 @@ byte with the first run's (``make rerun``, then the last step of ``make test``).
 
 from __future__ import annotations
 
+import concurrent.futures as cf
 import os
 import shutil
 import subprocess
@@ -12,7 +13,7 @@ import tempfile
 from pathlib import Path
 
 from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
-from mechlib.pipeline.chapters import in_order
+from mechlib.pipeline.chapters import in_order, upstream
 from mechlib.pipeline.execute import input_arguments, papermill_command
 from mechlib.pipeline.references import compare
 from mechlib.records import load
@@ -21,8 +22,17 @@ from mechlib.records import load
 HIT_LOG = "fe-cache-hits.jsonl"
 
 
+#: notebooks the re-run executes at a time (each after the chapters it reads): two, like
+#: ``make -j2 notebooks``, so that both cores work while one chapter waits on its kernel
+JOBS = 2
+
+
 def rerun(
-    notebooks: Path, out: Path, python: str = sys.executable, fe_cache_from: Path | None = None
+    notebooks: Path,
+    out: Path,
+    python: str = sys.executable,
+    fe_cache_from: Path | None = None,
+    jobs: int = JOBS,
 ) -> None:
     """Execute every notebook again into ``out`` (emptied first).
 
@@ -35,8 +45,8 @@ def rerun(
     a sample of them can be recomputed cold
     (:func:`mechlib.hexflex.campaign.cachecheck.check_sample`;
     ``make test`` does both, and saves the second run's FE solves). Notebooks
-    run in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each after the chapters
-    whose records give it inputs, read strictly from the re-run's own records
+    run ``jobs`` at a time in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each
+    after the chapters whose records give it inputs, read strictly from the re-run's own records
     (``$MECHLIB_RECORDS_STRICT``), never the first run's.
 
     Raises
@@ -59,17 +69,35 @@ def rerun(
         shutil.copytree(fe_cache_from, out / "fe-cache")
         variables[FE_LOG_ENV] = str(out / HIT_LOG)
     env = dict(os.environ, **variables)
-    for nb in in_order(Path(notebooks).glob("*.ipynb")):
-        print(f"re-run: executing {nb.name}", flush=True)
-        inputs = input_arguments(nb.stem, out / "records", strict=True)
-        cmd = papermill_command(nb, out / nb.name, inputs, python=python)
-        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
-        if done.returncode != 0:
-            tail = "\n".join(done.stderr.splitlines()[-20:])
-            raise RuntimeError(
-                f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
-                f"{out / nb.name}):\n{tail}"
-            )
+    pending = in_order(Path(notebooks).glob("*.ipynb"))
+    here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
+    done: set[str] = set()
+    with cf.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        running: dict[cf.Future, Path] = {}
+        while pending or running:
+            for nb in [n for n in pending if set(upstream(n.stem)) & here <= done]:
+                if len(running) >= max(1, jobs):
+                    break
+                pending.remove(nb)
+                running[pool.submit(_execute, nb, out, env, python)] = nb
+            finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
+            for fut in finished:
+                nb = running.pop(fut)
+                fut.result()  # a failed notebook stops the re-run (RuntimeError, named)
+                done.add(nb.stem)
+
+
+def _execute(nb: Path, out: Path, env: dict[str, str], python: str) -> None:
+    print(f"re-run: executing {nb.name}", flush=True)
+    inputs = input_arguments(nb.stem, out / "records", strict=True)
+    cmd = papermill_command(nb, out / nb.name, inputs, python=python)
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    if done.returncode != 0:
+        tail = "\n".join(done.stderr.splitlines()[-20:])
+        raise RuntimeError(
+            f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
+            f"{out / nb.name}):\n{tail}"
+        )
 
 
 def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
