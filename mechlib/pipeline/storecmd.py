@@ -86,6 +86,8 @@ def _pack(args: argparse.Namespace) -> int:
         "python": platform.python_version(),
         "seconds": args.seconds,
         "workers": args.workers,
+        # whether those seconds solved every run (an empty FE cache) or resumed from a cache
+        "from_empty": args.from_empty,
     }
     folder = store.write_store(entries, args.store, provenance)
     m = store.read_manifest(folder)
@@ -131,6 +133,9 @@ def parser() -> argparse.ArgumentParser:
     pack.add_argument("--store", type=Path, required=True)
     pack.add_argument("--seconds", type=float, default=None, help="wall time of the build")
     pack.add_argument("--workers", type=str, default=None, help="where it ran")
+    pack.add_argument(
+        "--from-empty", action="store_true", help="the build started from an empty FE cache"
+    )
     pack.set_defaults(func=_pack)
     check = sub.add_parser("check", help="a seeded sample of the store recomputed cold")
     check.add_argument("--store", type=Path, required=True)
