@@ -100,7 +100,8 @@ def _check(args: argparse.Namespace) -> int:
 
     _, entries = store.read_store(args.store)
     seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed
-    checks = check_entries(entries, {"nonlinear": args.nonlinear, "linear": args.linear}, seed)
+    per_kind = {"nonlinear": args.nonlinear, "linear": args.linear}
+    checks = check_entries(entries, per_kind, seed, workers=args.workers)
     for c in checks:
         verdict = "agrees" if c.agrees else "DIFFERS"
         print(
@@ -142,6 +143,7 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--nonlinear", type=int, default=COLD_NONLINEAR)
     check.add_argument("--linear", type=int, default=COLD_LINEAR)
     check.add_argument("--seed", type=int, default=None, help="default: from the commit")
+    check.add_argument("--workers", type=int, default=2, help="processes recomputing it")
     check.set_defaults(func=_check)
     return top
 
