@@ -160,7 +160,8 @@ store: $(STAMP)
 	  $(MAKE) --no-print-directory -j2 notebooks; \
 	$(PIPELINE) store pack --log $(STORE_LOG) --cache $(BUILD)/cache/experiments --store $(STORE) \
 	  --seconds $$(( $$(date +%s) - start )) \
-	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)"
+	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)" \
+	  $(if $(FROM_EMPTY),--from-empty)
 
 # every notebook executed again into $(RERUN), cold (an FE cache of its own) or, with
 # FE_CACHE_FROM=<folder>, from a copy of that FE cache: `make test` requires its records to be

@@ -68,3 +68,28 @@ def test_the_sample_takes_a_task_of_every_model_first() -> None:
         assert len({e["file"] for e in picked}) == 4
         two = cc.sample(entries, {"nonlinear": 2}, seed=seed)
         assert len({e["spec"] for e in two}) == 2  # fewer draws than models: distinct models
+
+
+def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> None:
+    from mechlib.hexflex.campaign.store import Entry
+
+    specs = [ex.ModelSpec(SMALL, mesh_size=f * SMALL.narrowest) for f in (0.9, 1.0)]
+    forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.2, -0.1]])
+    entries = [
+        Entry(
+            f"k{i}",
+            s.key(),
+            "linear",
+            1,
+            forces * (i + 1),
+            ex.task_poses(s, "linear", forces * (i + 1), 1),
+        )
+        for i, s in enumerate(specs + specs)
+    ]
+    entries[3] = Entry("k3", specs[1].key(), "linear", 1, forces * 4, entries[3].results * 1.01)
+    one = cc.check_entries(entries, {"linear": 4}, seed=0)
+    two = cc.check_entries(entries, {"linear": 4}, seed=0, workers=2)
+    assert (
+        [c.file for c in one] == [c.file for c in two] == ["k0.npy", "k1.npy", "k2.npy", "k3.npy"]
+    )
+    assert [c.agrees for c in two] == [True, True, True, False]

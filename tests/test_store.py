@@ -167,6 +167,7 @@ def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp
     assert storecmd.main(["pack", *args]) == 0
     manifest = st.read_manifest(folder)
     assert manifest["seconds"] == 12 and manifest["processor"] and manifest["commit"]
+    assert manifest["from_empty"] is False  # no --from-empty: the seconds resumed a cache
     assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
     assert "3 FE tasks" in capsys.readouterr().out
     check = ["check", "--store", str(folder), "--nonlinear", "1", "--linear", "1", "--seed", "3"]

@@ -29,7 +29,7 @@
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
-  projected to the CI and full profiles' run counts (both run on two workers). The executed
+  projected to the chapter's run count on two workers. The executed
   notebooks' own papermill durations are printed when a build holds them.
 """
 

@@ -72,7 +72,7 @@ def _cold_sample(rerun_dir: Path, n_nonlinear: int) -> bool:
     from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_sample, read_log
 
     per_kind = {"nonlinear": n_nonlinear, "linear": 1}
-    checks = check_sample(rerun_dir / HIT_LOG, rerun_dir / "fe-cache", per_kind)
+    checks = check_sample(rerun_dir / HIT_LOG, rerun_dir / "fe-cache", per_kind, workers=2)
     for c in checks:
         verdict = (
             "bit-identical"

@@ -86,6 +86,8 @@ def _pack(args: argparse.Namespace) -> int:
         "python": platform.python_version(),
         "seconds": args.seconds,
         "workers": args.workers,
+        # whether those seconds solved every run (an empty FE cache) or resumed from a cache
+        "from_empty": args.from_empty,
     }
     folder = store.write_store(entries, args.store, provenance)
     m = store.read_manifest(folder)
@@ -98,7 +100,8 @@ def _check(args: argparse.Namespace) -> int:
 
     _, entries = store.read_store(args.store)
     seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed
-    checks = check_entries(entries, {"nonlinear": args.nonlinear, "linear": args.linear}, seed)
+    per_kind = {"nonlinear": args.nonlinear, "linear": args.linear}
+    checks = check_entries(entries, per_kind, seed, workers=args.workers)
     for c in checks:
         verdict = "agrees" if c.agrees else "DIFFERS"
         print(
@@ -131,12 +134,16 @@ def parser() -> argparse.ArgumentParser:
     pack.add_argument("--store", type=Path, required=True)
     pack.add_argument("--seconds", type=float, default=None, help="wall time of the build")
     pack.add_argument("--workers", type=str, default=None, help="where it ran")
+    pack.add_argument(
+        "--from-empty", action="store_true", help="the build started from an empty FE cache"
+    )
     pack.set_defaults(func=_pack)
     check = sub.add_parser("check", help="a seeded sample of the store recomputed cold")
     check.add_argument("--store", type=Path, required=True)
     check.add_argument("--nonlinear", type=int, default=COLD_NONLINEAR)
     check.add_argument("--linear", type=int, default=COLD_LINEAR)
     check.add_argument("--seed", type=int, default=None, help="default: from the commit")
+    check.add_argument("--workers", type=int, default=2, help="processes recomputing it")
     check.set_defaults(func=_check)
     return top
 

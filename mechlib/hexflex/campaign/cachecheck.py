@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex.campaign.executors import worker_pool
 from mechlib.hexflex.campaign.experiments import (
     KINDS,
     POSE_COLUMNS,
@@ -113,7 +114,11 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
 
 
 def check_sample(
-    log: Path, cache_dir: Path, per_kind: dict[str, int], seed: int = SAMPLE_SEED
+    log: Path,
+    cache_dir: Path,
+    per_kind: dict[str, int],
+    seed: int = SAMPLE_SEED,
+    workers: int = 1,
 ) -> list[CacheCheck]:
     """Recompute a seeded sample of the tasks logged in ``log`` and compare each with its file
     in ``cache_dir``.
@@ -129,10 +134,12 @@ def check_sample(
          np.load(Path(cache_dir) / e["file"]))
         for e in picked
     ]  # fmt: skip
-    return _recompute(tasks)
+    return _recompute(tasks, workers)
 
 
-def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[CacheCheck]:
+def check_entries(
+    entries: list, per_kind: dict[str, int], seed: int, workers: int = 1
+) -> list[CacheCheck]:
     """Recompute a seeded sample of results-store entries
     (:class:`mechlib.hexflex.campaign.store.Entry`) and compare each with its stored poses.
 
@@ -144,6 +151,8 @@ def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[Ca
         Tasks to draw per kind (all of a kind if fewer).
     seed : int
         Seed of the draw (``make test`` takes it from the commit: each commit checks others).
+    workers : int
+        Processes recomputing the sample, each a share of its models (1: this process).
 
     Returns
     -------
@@ -153,13 +162,34 @@ def check_entries(entries: list, per_kind: dict[str, int], seed: int) -> list[Ca
     logged = [{"file": f"{e.key}.npy", "kind": e.kind, "spec": e.spec, "entry": e} for e in entries]
     picked = [d["entry"] for d in sample(logged, per_kind, seed)]
     return _recompute(
-        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked]
+        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked], workers
     )
 
 
-def _recompute(tasks: list[tuple]) -> list[CacheCheck]:
+def _recompute(tasks: list[tuple], workers: int = 1) -> list[CacheCheck]:
     """Each (file, spec text, kind, forces, steps, cached results) task solved now and its poses
-    compared (the solve statistics after a non-linear run's poses are not)."""
+    compared (the solve statistics after a non-linear run's poses are not), in the order given;
+    with ``workers`` > 1 the models are shared out among that many fresh processes (one BLAS
+    thread each), every task of a model in the same one."""
+    workers = check_int("workers", workers, low=1, high=64)
+    keys = list(dict.fromkeys(t[1] for t in tasks))
+    if workers == 1 or len(keys) < 2:
+        by_file = {c.file: c for c in _recompute_models(tasks)}
+        return [by_file[t[0]] for t in tasks]
+    # the models dealt out largest first (by task count) to the least loaded process
+    bins: list[list[str]] = [[] for _ in range(min(workers, len(keys)))]
+    load = [0] * len(bins)
+    for key in sorted(keys, key=lambda k: -sum(t[1] == k for t in tasks)):
+        i = load.index(min(load))
+        bins[i].append(key)
+        load[i] += sum(t[1] == key for t in tasks)
+    with worker_pool(len(bins)) as pool:
+        parts = pool.map(_recompute_models, [[t for t in tasks if t[1] in b] for b in bins])
+        by_file = {c.file: c for part in parts for c in part}
+    return [by_file[t[0]] for t in tasks]
+
+
+def _recompute_models(tasks: list[tuple]) -> list[CacheCheck]:
     out: list[CacheCheck] = []
     for key in dict.fromkeys(t[1] for t in tasks):  # one model at a time (memory)
         spec = spec_from_key(key)
