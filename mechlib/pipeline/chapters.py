@@ -34,9 +34,8 @@ CHAPTER_INPUTS: dict[str, dict[str, tuple[str, str]]] = {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),
     },
-    # the family page solves the DOE chapter's validation draw (its seed and size) on other
-    # members (and reuses the identified member's runs from the FE cache, so it runs after that
-    # chapter)
+    # the family page solves the DOE chapter's validation draw (its seed and size) on the
+    # members of the Eq 8 family, so it runs after that chapter
     "nonlinear_family": {
         "geometry": ("hexflex_model", "geometry.*"),
         "mesh_fraction": ("hexflex_model", "model.mesh_fraction"),

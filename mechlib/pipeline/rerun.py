@@ -12,6 +12,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from mechlib.params import check_int
 from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
 from mechlib.pipeline.chapters import in_order, upstream
 from mechlib.pipeline.execute import input_arguments, papermill_command
@@ -55,6 +56,7 @@ def rerun(
         If a notebook fails, naming it and its executed copy (which holds the traceback), with
         the end of papermill's error output.
     """
+    jobs = check_int("jobs", jobs, low=1, high=16)
     out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
     shutil.rmtree(out, ignore_errors=True)
     (out / "records").mkdir(parents=True)
@@ -72,11 +74,11 @@ def rerun(
     pending = in_order(Path(notebooks).glob("*.ipynb"))
     here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
     done: set[str] = set()
-    with cf.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+    with cf.ThreadPoolExecutor(max_workers=jobs) as pool:
         running: dict[cf.Future, Path] = {}
         while pending or running:
             for nb in [n for n in pending if set(upstream(n.stem)) & here <= done]:
-                if len(running) >= max(1, jobs):
+                if len(running) >= jobs:
                     break
                 pending.remove(nb)
                 running[pool.submit(_execute, nb, out, env, python)] = nb

@@ -4,6 +4,7 @@
 ``concurrent.futures`` executor (:mod:`.executors`: local processes or a Dask cluster) and caches
 each finished task on disk under a key (:mod:`.taskcache`) that includes a digest of the FE
 sources (:mod:`.sources`); :mod:`.store` packs the tasks a build used into the versioned results
-store and reads it back; :mod:`.cachecheck` recomputes a seeded sample cold. Imports
+store and reads it back; :mod:`.cachecheck` recomputes a seeded sample cold; :mod:`.compliance`
+reads the compliances of identifications as cached tasks. Imports
 :mod:`mechlib.hexflex.fe` and the top of :mod:`mechlib.hexflex`, never the studies or the ROM.
 """

@@ -95,7 +95,10 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
     chosen: list[int] = []
     for kind in KINDS:
         n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
-        idx = [i for i, e in enumerate(entries) if e["kind"] == kind]
+        # by file name: the same tasks give the same sample whatever order the log has them in
+        # (two chapters at a time append to it concurrently)
+        idx = sorted((i for i, e in enumerate(entries) if e["kind"] == kind),
+                     key=lambda i: entries[i]["file"])  # fmt: skip
         if not (n and idx):
             continue
         groups: dict[str, list[int]] = {}
@@ -169,8 +172,9 @@ def check_entries(
 def _recompute(tasks: list[tuple], workers: int = 1) -> list[CacheCheck]:
     """Each (file, spec text, kind, forces, steps, cached results) task solved now and its poses
     compared (the solve statistics after a non-linear run's poses are not), in the order given;
-    with ``workers`` > 1 the models are shared out among that many fresh processes (one BLAS
-    thread each), every task of a model in the same one."""
+    with ``workers`` > 1 the models are shared out among that many worker processes
+    (:func:`~mechlib.hexflex.campaign.executors.worker_pool`: the cores shared out among them),
+    every task of a model in the same one."""
     workers = check_int("workers", workers, low=1, high=64)
     keys = list(dict.fromkeys(t[1] for t in tasks))
     if workers == 1 or len(keys) < 2:

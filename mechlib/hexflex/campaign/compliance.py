@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.experiments import ModelSpec, run_experiments
+from mechlib.hexflex.campaign.experiments import ModelSpec, release_models, run_experiments
 from mechlib.hexflex.fe.model import check_settings
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_float
@@ -54,7 +54,8 @@ def lean_specs(*, young: float, poisson: float, pose_mesh_size: float | None) ->
 
 def compliance_maker(specs: SpecMaker, cache_dir: Path | None = None) -> Callable[..., np.ndarray]:
     """Geometry → :func:`compliance` of the model ``specs`` makes of it: the FE side of
-    :func:`mechlib.hexflex.identify.identify` and ``log_sensitivity``, cached in ``cache_dir``."""
+    :func:`mechlib.hexflex.identify.identify` and ``log_sensitivity``, cached in ``cache_dir``
+    (after each call this process keeps no model: :func:`release_models`)."""
     return partial(_compliance_of, specs, cache_dir)
 
 
@@ -73,4 +74,6 @@ def _lean_spec(
 
 
 def _compliance_of(specs: SpecMaker, cache_dir: Path | None, g: HexFlexGeometry) -> np.ndarray:
-    return compliance(specs(g), cache_dir)
+    out = compliance(specs(g), cache_dir)
+    release_models()  # an identification builds a new model at every step: keep none of them
+    return out

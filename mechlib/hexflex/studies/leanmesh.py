@@ -100,7 +100,7 @@ def lean_spec(
     Parameters
     ----------
     spec : ModelSpec
-        A default-mesh Q2 model (its linear model is built once in this process, if not yet).
+        A default-mesh Q2 model (its compliance read from ``cache_dir`` or computed).
     max_evaluations : int
         Lean FE models the fit may build (:func:`fit_lean`).
     cache_dir : Path, optional
@@ -119,7 +119,8 @@ def lean_spec(
     ValueError
         If ``spec`` is not a default-mesh Q2 model.
     mechlib.hexflex.identify.IdentificationError
-        If the fit does not meet ``FIT_TOL`` within ``max_evaluations``.
+        If the fit does not meet ``FIT_TOL`` within ``max_evaluations`` (the message says to
+        solve on the default mesh instead).
     """
     if spec.mesh != "default" or spec.element != "q2":
         raise ValueError(
@@ -127,15 +128,22 @@ def lean_spec(
             f"element={spec.element!r}"
         )
     own = ident.target_values(cc.compliance(spec, cache_dir))
-    fit = fit_lean(
-        spec.geometry,
-        own,
-        young=spec.young,
-        poisson=spec.poisson,
-        max_evaluations=max_evaluations,
-        pose_mesh_size=spec.mesh_size,
-        cache_dir=cache_dir,
-    )
+    try:
+        fit = fit_lean(
+            spec.geometry,
+            own,
+            young=spec.young,
+            poisson=spec.poisson,
+            max_evaluations=max_evaluations,
+            pose_mesh_size=spec.mesh_size,
+            cache_dir=cache_dir,
+        )
+    except ident.IdentificationError as err:
+        raise ident.IdentificationError(
+            f"no lean stand-in of this model: {err}; solve its non-linear runs on the default "
+            f"mesh instead (nonlinear_mesh='default')",
+            err.result,
+        ) from err
     return replace(spec, geometry=fit.geometry, mesh="lean"), fit
 
 
