@@ -44,7 +44,7 @@ def test_a_tampered_cache_file_is_found(tmp_path, monkeypatch) -> None:
     np.save(cache / entry["file"], stored * (1 + 1e-12))  # round-off: agrees, not identical
     (check,) = cc.check_sample(log, cache, {"nonlinear": 1})
     assert not check.identical and check.agrees and 0 < check.max_abs_diff < 1e-6
-    np.save(cache / entry["file"], stored * (1 + 1e-6))  # beyond the tolerance
+    np.save(cache / entry["file"], stored * (1 + 10 * cc.AGREE_RTOL))  # beyond the tolerance
     (check,) = cc.check_sample(log, cache, {"nonlinear": 1})
     assert not check.identical and not check.agrees
 

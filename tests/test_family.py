@@ -45,7 +45,7 @@ def _fake_identify(miss: float):
     tol, and keeps the settings it was given."""
     seen = {}
 
-    def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol):
+    def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol, **steer):
         seen.update(max_evaluations=max_evaluations, tol=tol, thickness=start.thickness)
         t = np.asarray(target, dtype=float)
         hist = np.zeros((max_evaluations, len(free) + 4))

@@ -24,13 +24,14 @@ TOL = 1e-3
 NOISE = 1e-6
 
 
-def _noisy(fn, seed: int):
-    """``fn`` with every entry off by a relative 1e-6 that depends on the geometry and seed."""
+def _noisy(fn, seed: int, noise: float = NOISE):
+    """``fn`` with every entry off by a relative ``noise`` that depends on the geometry and
+    seed."""
 
     def out(g: HexFlexGeometry) -> np.ndarray:
         key = int(abs(hash(tuple(np.round(list(g.as_dict().values()), 12)))) % 2**32)
         rng = np.random.default_rng([seed, key])
-        return fn(g) * (1 + NOISE * rng.standard_normal((6, 6)))
+        return fn(g) * (1 + noise * rng.standard_normal((6, 6)))
 
     return out
 
@@ -92,3 +93,54 @@ def test_prefit_is_unique_where_the_magnitudes_leave_a_dimension_free() -> None:
     np.testing.assert_allclose(achieved, TARGET, rtol=1e-5)
     for n in free:  # a start moved by 1e-6 moves the fit by about as much, not by the path
         assert getattr(b, n) == pytest.approx(getattr(a, n), rel=3 * NOISE)
+
+
+def _family_member(monkeypatch, fe, prefit_shift: float = 0.0) -> family.Member:
+    """:func:`family.identify_member` at 0.45 mm with ``fe`` standing in for the FE model and
+    the beam model's pre-fit moved by ``prefit_shift`` [mm] (its least squares' own spread)."""
+    exact = fr.prefit
+
+    def prefit(*args, **kwargs):
+        g, achieved = exact(*args, **kwargs)
+        return g.replace(**{n: getattr(g, n) + prefit_shift for n in family.FAMILY_FREE}), achieved
+
+    monkeypatch.setattr(family.cc, "compliance_maker", lambda specs, cache_dir=None: fe)
+    monkeypatch.setattr(family.frame, "prefit", prefit)
+    return family.identify_member(TARGET, START, 0.45, 0.5, tol=TOL)
+
+
+def test_a_family_member_is_the_same_under_another_processors_round_off(monkeypatch) -> None:
+    """The member's FE fit reads misfits to ``FIT_LOG_QUANTUM`` and starts from the pre-fit on a
+    1 µm grid: FE magnitudes off by a relative 1e-6 (200 times the 5e-9 measured between BLAS
+    kernels; without the quantum this path changes) and a pre-fit off by 3e-7 mm (its least
+    squares' spread between kernels) leave the member bit for bit unchanged."""
+    base = _family_member(monkeypatch, _fe)
+    assert np.abs(np.log(base.achieved / TARGET)).max() <= TOL
+    assert base.evaluations < ident.MAX_EVALUATIONS
+    start, _ = fr.prefit(TARGET, START.replace(thickness=0.45), family.FAMILY_FREE)
+    assert base.geometry.radial_width == round(start.radial_width, family.START_DECIMALS)
+    for shift, fe in ((3e-7, _fe), (0.0, _noisy(_fe, 3, noise=1e-6))):
+        other = _family_member(monkeypatch, fe, shift)
+        assert other.geometry == base.geometry, shift
+        assert other.evaluations == base.evaluations
+
+
+def test_secant_steps_converge_where_the_surrogate_is_off() -> None:
+    free = list(family.FE_FREE)
+    start, _ = fr.prefit(TARGET, START.replace(thickness=0.45), family.FAMILY_FREE, shear=False)
+    fits = {
+        j: ident.identify(start, TARGET, free, _fe, _surrogate, tol=1e-5, jacobian=j)
+        for j in ident.JACOBIANS
+    }
+    for j, fit in fits.items():
+        assert np.abs(np.log(fit.achieved / TARGET)).max() <= 1e-5, j
+    assert fits["secant"].n_evaluations <= fits["surrogate"].n_evaluations
+
+
+def test_bad_steering_settings_are_refused_by_name() -> None:
+    with pytest.raises(ValueError, match="jacobian"):
+        ident.identify(START, TARGET, ["beam_width"], _fe, _surrogate, jacobian="exact")
+    with pytest.raises(ValueError, match="log_quantum"):
+        ident.identify(START, TARGET, ["beam_width"], _fe, _surrogate, tol=1e-3, log_quantum=2e-3)
+    with pytest.raises(ValueError, match="fe_free"):
+        family.identify_member(TARGET, START, 0.45, 0.5, fe_free=["thickness"])

@@ -41,6 +41,8 @@ GRID_DECIMALS = 6
 #: FE models :func:`identify` may build by default: measured, the fits of the book converge
 #: in 3–8; the budget only ends a fit that does not converge, with an error.
 MAX_EVALUATIONS = 20
+#: The Jacobians :func:`identify` can steer by (its ``jacobian``).
+JACOBIANS: tuple[str, ...] = ("surrogate", "secant")
 
 ComplianceFn = Callable[[HexFlexGeometry], np.ndarray]
 
@@ -169,6 +171,8 @@ def identify(
     max_evaluations: int = MAX_EVALUATIONS,
     tol: float = 1e-3,
     grid_decimals: int | None = GRID_DECIMALS,
+    jacobian: str = "surrogate",
+    log_quantum: float | None = None,
 ) -> Identification:
     """Fit the ``free`` dimensions of ``start`` so that ``compliance_fn`` meets ``target``.
 
@@ -203,6 +207,15 @@ def identify(
         Converged when every |log(achieved / target)| is at most this, in (0, 1].
     grid_decimals : int or None
         Decimals [mm] of the free dimensions evaluated, in [3, 12] (None: no rounding).
+    jacobian : {"surrogate", "secant"}
+        The steps' Jacobian: the surrogate's at every geometry, or the surrogate's at the start
+        updated after every FE model by Broyden's secant rule (the FE's own sensitivities are
+        learnt along the path: faster where the surrogate's are off, see :data:`JACOBIANS`).
+    log_quantum : float or None
+        When given, in [1e-8, 1e-2]: every log(achieved / target) of the FE is rounded to a
+        multiple of it before it steers or stops the fit, so that round-off far below it
+        (another processor's) leaves the path unchanged except where a value lies within that
+        round-off of a rounding boundary. Must be below ``tol``.
 
     Returns
     -------
@@ -224,6 +237,9 @@ def identify(
     tol = check_float("tol", tol, low=0.0, high=1.0, low_open=True)
     if grid_decimals is not None:
         grid_decimals = check_int("grid_decimals", grid_decimals, low=3, high=12)
+    jacobian = check_choice("jacobian", jacobian, JACOBIANS)
+    if log_quantum is not None:
+        log_quantum = check_float("log_quantum", log_quantum, low=1e-8, high=min(1e-2, tol))
     lo = np.log([DIMENSION_BOUNDS[n][0] for n in free])
     hi = np.log([DIMENSION_BOUNDS[n][1] for n in free])
     g = _on_grid(start, free, np.log([getattr(start, n) for n in free]), grid_decimals)
@@ -234,16 +250,25 @@ def identify(
     x = np.log([getattr(g, n) for n in free])
     history: list[np.ndarray] = []
     converged = False
+    jac = previous = None
     while len(history) < max_evaluations:
         achieved = np.abs(target_values(compliance_fn(g)))  # a sign flip is a misfit, not NaN
         history.append(np.r_[[getattr(g, n) for n in free], achieved])
         r = np.log(achieved / target)
+        if log_quantum is not None:
+            r = np.round(r / log_quantum) * log_quantum
         if np.abs(r).max() <= tol:
             converged = True
             break
         if len(history) == max_evaluations:
             break
-        step = -np.linalg.pinv(log_sensitivity(surrogate_fn, g, free)) @ r
+        if jac is None or jacobian == "surrogate":
+            jac = log_sensitivity(surrogate_fn, g, free)
+        elif np.any(x != previous[0]):  # Broyden: r's change along the step taken corrects jac
+            s_x, s_r = x - previous[0], r - previous[1]
+            jac = jac + np.outer(s_r - jac @ s_x, s_x) / (s_x @ s_x)
+        previous = (x, r)
+        step = -np.linalg.pinv(jac) @ r
         step *= min(1.0, MAX_LOG_STEP / np.abs(step).max())
         for _ in range(20):
             trial = x + step

@@ -29,7 +29,8 @@ from mechlib.hexflex.geometry import (
 from mechlib.params import check_float
 
 #: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
-#: radius of the beams (four magnitudes, five dimensions: the minimum-norm step picks one member).
+#: radius of the beams (four magnitudes, five dimensions: the beam model's pre-fit picks the
+#: member nearest the start).
 FAMILY_FREE: tuple[str, ...] = (
     "beam_width",
     "beam_length",
@@ -37,6 +38,20 @@ FAMILY_FREE: tuple[str, ...] = (
     "radial_width",
     "beam_radius",
 )
+#: The dimensions the FE fit of a member moves: as many as magnitudes, so that the FE member is
+#: an isolated solution, reached whatever the path (the radial width keeps the pre-fit's value).
+#: Of the five, dropping the radial width leaves the best-conditioned four (the beam model's
+#: log-sensitivities: smallest singular value 0.17 at 0.45 mm, 0.22 at 0.55 mm).
+FE_FREE: tuple[str, ...] = ("beam_width", "beam_length", "radial_length", "beam_radius")
+#: Decimals [mm] of the pre-fit that starts a member's FE fit (1 µm): the pre-fit's least squares
+#: ends within ~3e-7 mm of its optimum, differently on another processor, so on a finer grid
+#: the start (and the radial width kept) would depend on round-off.
+START_DECIMALS = 3
+#: log(achieved / target) of a member's FE fit is read to this quantum
+#: (:func:`mechlib.hexflex.identify.identify`'s ``log_quantum``): far above the FE's
+#: round-off between processors (measured on a 0.45 mm member, OpenBLAS Haswell vs
+#: Sandybridge kernels: 4.6e-9 of the compliance) and ten times below the fit tolerance.
+FIT_LOG_QUANTUM = 1e-4
 
 
 @dataclass(frozen=True)
@@ -161,13 +176,18 @@ def identify_member(
     young: float = AL7075_YOUNG_MPA,
     poisson: float = AL7075_POISSON,
     cache_dir: Path | None = None,
+    fe_free: Sequence[str] = FE_FREE,
 ) -> Member:
     """The member of the family with plate ``thickness`` [mm]: ``free`` re-identified so that
     the Q2 FE model (flexure elements ``mesh_fraction`` of the narrowest width) meets ``target``.
 
-    The beam model's pre-fit picks the member nearest ``start`` (:func:`frame.prefit`), and the
-    FE fit converges to the FE member nearest that pre-fit (:func:`identify.identify`): one
-    member, whatever the processor's round-off.
+    The beam model's pre-fit picks the member nearest ``start`` (:func:`frame.prefit`, ``free``
+    fitted), rounded to :data:`START_DECIMALS`; the FE fit then moves ``fe_free`` alone (as many
+    dimensions as magnitudes: an isolated solution, whatever the path) with secant-updated
+    steps, reading the FE's misfits to :data:`FIT_LOG_QUANTUM` (:func:`identify.identify`). On
+    another processor the FE's round-off (~5e-9) moves no rounded value except by the rare
+    coincidence of lying that close to a rounding boundary, so the member is the same; should
+    it happen, the path changes and the member moves within the fit's tolerance.
 
     Parameters
     ----------
@@ -179,7 +199,9 @@ def identify_member(
         The member's plate thickness [mm], within the layout's bounds.
     mesh_fraction : float
         As for :func:`mechlib.hexflex.fe.model.model_maker`.
-    free, max_evaluations, tol
+    free : sequence of str
+        The dimensions the beam model's pre-fit moves.
+    max_evaluations, tol
         As for :func:`mechlib.hexflex.identify.identify`: ``tol`` is the largest
         |log(achieved / target)| over the four magnitudes that the member may keep.
     young, poisson : float
@@ -187,6 +209,8 @@ def identify_member(
     cache_dir : Path, optional
         FE cache of the compliances of the models built
         (:mod:`mechlib.hexflex.campaign.compliance`).
+    fe_free : sequence of str
+        The dimensions the FE fit moves: at most four, each in ``free``.
 
     Returns
     -------
@@ -203,7 +227,14 @@ def identify_member(
         names the thickness, the misfit reached and ``tol``).
     """
     g = start.replace(thickness=check_thickness(thickness))
+    fe_free = ident.check_free(fe_free)
+    if len(fe_free) > len(ident.TARGET_LABELS) or not set(fe_free) <= set(free):
+        raise ValueError(
+            f"fe_free must be at most {len(ident.TARGET_LABELS)} of free = {list(free)}, "
+            f"got {fe_free}"
+        )
     prefit, _ = frame.prefit(target, g, free, young, poisson)
+    prefit = prefit.replace(**{n: round(getattr(prefit, n), START_DECIMALS) for n in free})
     specs = cc.default_specs(
         young=young, poisson=poisson, element="q2", mesh_fraction=mesh_fraction
     )
@@ -211,11 +242,13 @@ def identify_member(
         fit = ident.identify(
             prefit,
             target,
-            free,
+            fe_free,
             cc.compliance_maker(specs, cache_dir),
             frame.compliance_maker(young, poisson),
             max_evaluations=max_evaluations,
             tol=tol,
+            jacobian="secant",
+            log_quantum=min(FIT_LOG_QUANTUM, tol / 10),
         )
     except ident.IdentificationError as err:
         raise ident.IdentificationError(
