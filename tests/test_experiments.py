@@ -382,3 +382,17 @@ def test_a_docstring_only_package_does_not_enter_the_cache_key() -> None:
     assert not taskcache._defines_code(b'"""Doc."""\n\nfrom __future__ import annotations\n')
     assert taskcache._defines_code(b'"""Doc."""\n\nSIZE = 2\n')
     assert taskcache._defines_code(b"from mechlib.hexflex.fe.model import HexFlexModel\n")
+
+
+def test_the_models_size_is_cached_like_a_run(tmp_path, monkeypatch) -> None:
+    want = ex.model_for(SPEC).n_dofs
+    assert ex.model_size(SPEC, tmp_path) == want
+    ex.release_models()
+
+    def no_model(spec):
+        raise AssertionError("a cached size builds no model")
+
+    monkeypatch.setattr(ex, "model_for", no_model)
+    assert ex.model_size(SPEC, tmp_path) == want
+    with pytest.raises(ex.ExperimentError, match="builds no model"):  # no cache: built
+        ex.model_size(SPEC, None)

@@ -467,3 +467,14 @@ def test_midplane_shapes_of_the_inverse_forces_move_the_stage_by_the_poses(
     np.testing.assert_allclose(fitted, poses, atol=1e-6 * np.abs(poses).max())
     one = shell_model.midplane_displacements(forces[2])  # one solve: the same to round-off
     np.testing.assert_allclose(shapes[2], one, rtol=1e-12, atol=1e-12 * np.abs(one).max())
+
+
+def test_the_convergence_study_reads_its_models_from_the_cache(tmp_path, monkeypatch) -> None:
+    from mechlib.hexflex.campaign import experiments as ex
+
+    first = convergence.study(SMALL, [1.0], elements=("shell",), cache_dir=tmp_path)
+    ex.release_models()
+    monkeypatch.setattr(ex.ModelSpec, "build", lambda self: pytest.fail("a model was built"))
+    again = convergence.study(SMALL, [1.0], elements=("shell",), cache_dir=tmp_path)
+    assert again[0]["n_dofs"] == first[0]["n_dofs"] > 0
+    np.testing.assert_array_equal(again[0]["compliance"], first[0]["compliance"])

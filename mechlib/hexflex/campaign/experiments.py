@@ -42,7 +42,9 @@ from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_choice, check_int
 
-KINDS: tuple[str, ...] = ("linear", "nonlinear")
+#: task kinds: linear runs, non-linear runs, and the model's size (its free DOFs, one row of
+#: zero forces), cached like the runs so that a build reading the cache builds no model for it
+KINDS: tuple[str, ...] = ("linear", "nonlinear", "size")
 #: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.fe.finite_pose`): the
 #: small-rotation fit of the stage nodes (the linear model's and the tables' pose), and the exact
 #: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
@@ -54,10 +56,14 @@ POSE_CONVENTIONS: tuple[str, ...] = CONVENTIONS
 #: final ‖residual‖ / ‖load‖. A run that does not converge raises, so a stored run converged.
 SOLVE_STATS: tuple[str, ...] = ("corrections", "factorisations", "restarts", "residual")
 #: pose columns a run has: 6 per convention of its kind
-POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS)}
+POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 #: columns a task returns (and the cache and the results store keep) per run: its poses, then,
 #: for a non-linear run, its ``SOLVE_STATS``
-RESULT_COLUMNS = {"linear": 6, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
+RESULT_COLUMNS = {
+    "linear": 6,
+    "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS),
+    "size": 1,
+}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 #: FE mesh recipes a :class:`ModelSpec` names
@@ -82,16 +88,25 @@ class ModelSpec:
     #: model it stands for; its geometry should be fitted to that model's magnitudes by
     #: :func:`mechlib.hexflex.studies.leanmesh.fit_lean`, or it is a few % off them)
     mesh: str = "default"
+    #: the default mesh's growth away from the flexures (:class:`HexFlexModel`'s ``coarsening``;
+    #: None: its default)
+    coarsening: float | None = None
 
     def __post_init__(self) -> None:
         check_int("quad_order", self.quad_order, low=2, high=10)
         check_choice("mesh", self.mesh, MESHES)
         if self.mesh == "lean" and self.element != "q2":
             raise ValueError(f"mesh 'lean' is Q2: element must be 'q2', got {self.element!r}")
+        if self.mesh == "lean" and self.coarsening is not None:
+            raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, got "
+                             f"{self.coarsening!r}")  # fmt: skip
 
     def key(self) -> str:
-        """Stable text of the specification (cache key ingredient)."""
+        """Stable text of the specification (cache key ingredient; a ``coarsening`` of None is
+        left out, so the keys of specifications without it are those they had before it)."""
         d = asdict(self)
+        if d["coarsening"] is None:
+            del d["coarsening"]
         return json.dumps(d, sort_keys=True)
 
     def build(self) -> HexFlexModel:
@@ -106,6 +121,7 @@ class ModelSpec:
             poisson=self.poisson,
             mesh_size=self.mesh_size,
             element=self.element,
+            coarsening=self.coarsening,
         )
 
 
@@ -177,6 +193,8 @@ def solver_for(spec: ModelSpec) -> NonlinearSolver:
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     if kind == "linear":
         return model_for(spec).poses(forces)
+    if kind == "size":
+        return np.full((len(forces), 1), float(model_for(spec).n_dofs))
     solver = solver_for(spec)
     model = solver.model
     rows = []
@@ -233,8 +251,9 @@ def run_experiments(
         The FE model.
     design : array_like (n, 6)
         Actuator forces per run, columns T1D1 … T3D2, within ±``MAX_FORCE_N``.
-    kind : {"linear", "nonlinear"}
-        Linear statics (batched back-substitutions) or the geometrically non-linear solve.
+    kind : {"linear", "nonlinear", "size"}
+        Linear statics (batched back-substitutions), the geometrically non-linear solve, or
+        (:func:`model_size`) the model's number of free DOFs in one column.
     steps : int
         Load steps of the non-linear solve (1–100).
     executor : concurrent.futures.Executor, optional
@@ -262,7 +281,7 @@ def run_experiments(
     pose = check_choice("pose", pose, allowed)
     width, n_poses = RESULT_COLUMNS[kind], POSE_COLUMNS[kind]
     cols = {"all": slice(0, n_poses), "stats": slice(n_poses, width)}.get(
-        pose, slice(6 * allowed.index(pose), 6 * allowed.index(pose) + 6)
+        pose, slice(6 * allowed.index(pose), 6 * allowed.index(pose) + min(6, width))
     )
     steps = check_int("steps", steps, low=1, high=100)
     block = LINEAR_BLOCK if kind == "linear" else 1
@@ -329,6 +348,13 @@ def run_experiments(
             residuals=residuals,
         )
     return out[:, cols].copy()
+
+
+def model_size(spec: ModelSpec, cache_dir: Path | None = None) -> int:
+    """Free DOFs of ``spec``'s model, read from ``cache_dir`` when a build counted them before
+    (a ``"size"`` task of :func:`run_experiments`; ``None``: no cache, the model is built)."""
+    zeros = np.zeros((1, 6))
+    return int(run_experiments(spec, zeros, kind="size", cache_dir=cache_dir, progress=False)[0, 0])
 
 
 def run_keeping_failures(

@@ -7,13 +7,16 @@ changes of the four Eq 8 magnitudes the identification matches.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
 from mechlib.hexflex import geometry as geo
+from mechlib.hexflex.campaign.compliance import compliance
+from mechlib.hexflex.campaign.experiments import ModelSpec, model_size, release_models
 from mechlib.hexflex.fe.model import (
     COARSE_WIDTHS,
     ELEMENTS,
-    HexFlexModel,
     coarsening_for,
 )
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
@@ -28,6 +31,7 @@ def study(
     poisson: float = AL7075_POISSON,
     elements: tuple[str, ...] = ELEMENTS,
     coarse_widths: float = COARSE_WIDTHS,
+    cache_dir: Path | None = None,
 ) -> list[dict[str, object]]:
     """Compliance of one geometry over mesh sizes (fractions of the narrowest flexure) and elements.
 
@@ -45,6 +49,9 @@ def study(
         Element kinds to solve at every fraction (``model.ELEMENTS``).
     coarse_widths : float
         Largest element of the stage and tabs, in narrowest flexure widths, in [1, 64].
+    cache_dir : Path, optional
+        FE cache: each model's compliance and DOF count are read from it when a build computed
+        them before (:mod:`mechlib.hexflex.campaign.compliance`), so no model is built then.
 
     Returns
     -------
@@ -58,7 +65,7 @@ def study(
         fraction = check_float("fractions", fraction, low=0.0, high=1.0, low_open=True)
         size = geometry.narrowest * fraction
         for kind in elements:
-            m = HexFlexModel(
+            spec = ModelSpec(
                 geometry,
                 young=young,
                 poisson=poisson,
@@ -72,10 +79,11 @@ def study(
                     "fraction": fraction,
                     "coarse_widths": coarse_widths,
                     "mesh_size": size,
-                    "n_dofs": m.n_dofs,
-                    "compliance": m.compliance(),
+                    "n_dofs": model_size(spec, cache_dir),
+                    "compliance": compliance(spec, cache_dir),
                 }
             )
+            release_models()  # the next, finer model replaces this one
     return rows
 
 

@@ -15,6 +15,7 @@ and quadrature, and :func:`relative_change` compares a quantity between two disc
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -147,7 +148,7 @@ def relative_change(values: object, reference: object) -> np.ndarray:
     return 100 * np.abs(v - r).max(axis=0) / top
 
 
-def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
+def linear_poses_for(spec: ModelSpec, forces: object, cache_dir: Path | None = None) -> np.ndarray:
     """:func:`linear_poses` of the non-linear solve that ``spec`` defines (its mesh and
     quadrature): at the model's own quadrature the (cached) linear model's poses; at another one
     those of the process's solver of ``spec``
@@ -161,15 +162,23 @@ def linear_poses_for(spec: ModelSpec, forces: object) -> np.ndarray:
         The model and quadrature of the non-linear runs to compare with.
     forces : array_like (n, 6)
         Actuator forces [N] within the model's bound.
+    cache_dir : Path, optional
+        FE cache: at the model's own quadrature the poses are ``forces @ C.T`` with the model's
+        compliance C read from it (:func:`mechlib.hexflex.campaign.compliance.compliance`, bit
+        for bit what the model computes), so a build reading the cache builds no model.
 
     Returns
     -------
     numpy.ndarray (n, 6)
         The linear stage poses [µm, µrad] on ``spec``'s mesh, with its quadrature.
     """
-    from mechlib.hexflex.campaign.experiments import model_for, solver_for
+    from mechlib.hexflex.campaign.compliance import compliance
+    from mechlib.hexflex.campaign.experiments import solver_for
+    from mechlib.hexflex.fe.model import check_forces
     from mechlib.hexflex.fe.problem import QUAD_ORDER
 
     if spec.quad_order == QUAD_ORDER:
-        return model_for(spec).poses(forces)
+        f = np.asarray(forces, dtype=float)
+        f = check_forces("forces [N]", f[None, :] if f.ndim == 1 else f)
+        return f @ compliance(spec, cache_dir).T
     return linear_poses(solver_for(spec), forces)
