@@ -165,6 +165,23 @@ def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: P
     assert len(problems) == 1 and "broken: no re-run record" in problems[0]
 
 
+def test_a_failed_chapter_stops_the_rerun_without_waiting_for_its_sibling(tmp_path: Path) -> None:
+    import time
+
+    nbformat = pytest.importorskip("nbformat")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    for name, code in (("broken", 'raise ValueError("probe_broke")'),
+                       ("slow", "import time\ntime.sleep(120)")):  # fmt: skip
+        nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
+        nb.metadata["kernelspec"] = {"name": "python3", "language": "python", "display_name": "Py"}
+        nbformat.write(nb, notebooks / f"{name}.ipynb")
+    t0 = time.monotonic()
+    with pytest.raises(RuntimeError, match=r"re-run of broken\.ipynb failed"):
+        rerun(notebooks, tmp_path / "out", jobs=2)
+    assert time.monotonic() - t0 < 60  # the sleeping sibling (120 s) was stopped
+
+
 # --- one call: record, glue, report ------------------------------------------------------------
 def _pasting() -> tuple[Recorder, dict]:
     pasted: dict = {}

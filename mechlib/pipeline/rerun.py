@@ -74,6 +74,7 @@ def rerun(
     pending = in_order(Path(notebooks).glob("*.ipynb"))
     here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
     done: set[str] = set()
+    procs: dict[str, subprocess.Popen] = {}  # the chapters executing, to stop on a failure
     with cf.ThreadPoolExecutor(max_workers=jobs) as pool:
         running: dict[cf.Future, Path] = {}
         while pending or running:
@@ -81,19 +82,28 @@ def rerun(
                 if len(running) >= jobs:
                     break
                 pending.remove(nb)
-                running[pool.submit(_execute, nb, out, env, python)] = nb
+                running[pool.submit(_execute, nb, out, env, python, procs)] = nb
             finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
             for fut in finished:
                 nb = running.pop(fut)
-                fut.result()  # a failed notebook stops the re-run (RuntimeError, named)
+                if fut.exception() is not None:  # a failed notebook stops the re-run at once:
+                    for proc in list(procs.values()):  # its sibling is stopped, not waited for
+                        proc.kill()
+                    fut.result()  # RuntimeError, naming the chapter
                 done.add(nb.stem)
 
 
-def _execute(nb: Path, out: Path, env: dict[str, str], python: str) -> None:
+def _execute(
+    nb: Path, out: Path, env: dict[str, str], python: str, procs: dict[str, subprocess.Popen]
+) -> None:
     print(f"re-run: executing {nb.name}", flush=True)
     inputs = input_arguments(nb.stem, out / "records", strict=True)
     cmd = papermill_command(nb, out / nb.name, inputs, python=python)
-    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    procs[nb.stem] = proc
+    _, stderr = proc.communicate()
+    del procs[nb.stem]
+    done = subprocess.CompletedProcess(cmd, proc.returncode, "", stderr)
     if done.returncode != 0:
         tail = "\n".join(done.stderr.splitlines()[-20:])
         raise RuntimeError(
