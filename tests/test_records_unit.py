@@ -313,3 +313,34 @@ def test_the_rerun_runs_two_chapters_at_a_time_each_after_its_inputs(tmp_path: P
     assert got["hexflex_model"]["saw_the_other_running"]["value"] is True
     with pytest.raises(ValueError, match="jobs"):
         rerun(notebooks, tmp_path / "out", jobs=0)
+
+
+def test_a_timing_is_kept_apart_glued_and_ignored_by_the_determinism_check(tmp_path: Path) -> None:
+    rec, pasted = _pasting()
+    rec.value("model.worst_pct", 0.05, rtol=1e-3)
+    rec.timing("model.single_us", 42.5, glue="single_us")
+    assert pasted == {"single_us": 42.5}
+    with pytest.raises(ValueError, match="already recorded"):
+        rec.timing("model.worst_pct", 1.0)
+    with pytest.raises(ValueError, match=r"model\.slow_us"):
+        rec.timing("model.slow_us", float("nan"))
+    first = load(rec.save(tmp_path / "a"))
+    assert (
+        first["timings"] == {"model.single_us": 42.5} and "model.single_us" not in first["values"]
+    )
+    assert quoted.unchecked_glue(first, ["single_us"]) == []
+    again = Recorder("nb", paste=lambda *a: None)
+    again.value("model.worst_pct", 0.05, rtol=1e-3)
+    again.timing("model.single_us", 51.0, glue="single_us")
+    again.save(tmp_path / "b")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    (notebooks / "nb.ipynb").write_text("{}")
+    assert rerun_differences(tmp_path / "a", tmp_path / "b", notebooks) == []
+    other = Recorder("nb", paste=lambda *a: None)
+    other.value("model.worst_pct", 0.06, rtol=1e-3)
+    other.timing("model.single_us", 42.5)
+    other.save(tmp_path / "c")
+    assert rerun_differences(tmp_path / "a", tmp_path / "c", notebooks)  # a value changed
+    # a record without timings is written as before (no empty section)
+    assert "timings" not in load(Recorder("plain", paste=lambda *a: None).save(tmp_path))
