@@ -117,7 +117,7 @@ class Recorder:
             A key or glue name used twice, a number without tolerance, a negative tolerance,
             a non-finite number, or a glued element that is not a number.
         """
-        if key in self.values:
+        if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
             raise ValueError(
@@ -188,6 +188,20 @@ class Recorder:
         """Record a measured time (or a rate made from one) under ``key``: machine- and
         load-dependent, so it is kept in the record's ``timings``, which neither the references
         nor the determinism re-run compare; glued for the prose under ``glue``.
+
+        Parameters
+        ----------
+        key : str
+            Unique name among the record's values and timings.
+        value : float
+            The time (any unit the key names, e.g. ``_us``), finite and ≥ 0.
+        glue : str, optional
+            Glue name for the prose.
+
+        Returns
+        -------
+        float
+            ``value``, checked.
 
         Raises
         ------

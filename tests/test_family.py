@@ -47,6 +47,8 @@ def _fake_identify(miss: float):
 
     def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol, **steer):
         seen.update(max_evaluations=max_evaluations, tol=tol, thickness=start.thickness)
+        assert steer == {"jacobian": "secant", "log_quantum": family.fit_log_quantum(tol)}
+        assert list(free) == list(family.FE_FREE)
         t = np.asarray(target, dtype=float)
         hist = np.zeros((max_evaluations, len(free) + 4))
         fit = ident.Identification(start, t * (1 + miss), t, max_evaluations, hist)

@@ -25,11 +25,11 @@ from threadpoolctl import threadpool_limits
 
 from mechlib.metamodels.families import (
     Surrogate,
-    _exponents,
-    _legendre,
     check_forces,
     fit_surrogate,
+    legendre_products,
     predict_array,
+    total_degree_exponents,
     wrap_model,
 )
 from mechlib.metamodels.metrics import error_metrics
@@ -83,8 +83,25 @@ def cross_validate_corrected(
     """Seeded k-fold cross-validated errors of :func:`corrected` on its full runs.
 
     The correction of each fold is fitted on the other folds' misses; the errors are those of
-    :func:`mechlib.metamodels.scoring.score` (``worst_pct`` and the per-component arrays) on
-    the pooled out-of-fold predictions of ``low + correction``.
+    :func:`mechlib.metamodels.scoring.score` on the pooled out-of-fold predictions of
+    ``low + correction``.
+
+    Parameters
+    ----------
+    low : Surrogate
+        The low-fidelity model.
+    forces, poses : array_like, shapes (runs, inputs), (runs, outputs)
+        The full runs, inside ``low``'s range.
+    folds : int
+        Number of folds, 2 to runs.
+    seed : int
+        Seed of the fold shuffle and of the corrections' optimiser.
+
+    Returns
+    -------
+    dict
+        The arrays (outputs,) of :func:`mechlib.metamodels.metrics.error_metrics` and
+        ``worst_pct``, the largest ``max_range_pct`` (a float).
     """
     x = check_forces(low, forces)
     y = check_matrix("poses", poses, shape=(x.shape[0], low.n_outputs))
@@ -109,13 +126,13 @@ def _fit_legendre(teacher: Surrogate, u: np.ndarray, y: np.ndarray, degree: int)
     """The least-squares Legendre polynomial of total ``degree`` through teacher values ``y``
     at the points ``u`` (scaled to [-1, 1])."""
     degree = check_int("degree", degree, low=1, high=MAX_DEGREE)
-    exps = _exponents(teacher.n_inputs, degree)
+    exps = total_degree_exponents(teacher.n_inputs, degree)
     if len(exps) >= len(u):
         raise ValueError(
             f"n_samples must exceed the {len(exps)} terms of degree {degree}, got {len(u)}"
         )
     with threadpool_limits(limits=1, user_api="blas"):
-        coef, *_ = np.linalg.lstsq(_legendre(u, exps), y, rcond=None)
+        coef, *_ = np.linalg.lstsq(legendre_products(u, exps), y, rcond=None)
     name = teacher.state.get("name", teacher.family)
     state = {"exponents": exps, "coef": coef, "teacher": name}
     return Surrogate(DISTILLED, teacher.amplitude, teacher.n_inputs, teacher.n_outputs, state)
@@ -163,8 +180,9 @@ def distill(
 def distillation_error_pct(
     student: Surrogate, teacher: Surrogate, n_check: int = DISTILL_CHECK, seed: int = 1
 ) -> float:
-    """Largest |student − teacher| over an independent Sobol' sample (``seed``), as % of the
-    teacher's largest |pose component| there, worst component."""
+    """Largest |student − teacher| over a Sobol' sample scrambled with ``seed`` (use another
+    seed than the distillation's, so that the points are new), as % of the teacher's largest
+    |pose component| there, worst component."""
     return _error_pct(student, *_teach(teacher, n_check, seed))
 
 
@@ -183,6 +201,7 @@ def distill_to(
     Parameters
     ----------
     teacher : Surrogate
+        The model to distil (fitted or wrapped).
     tol_pct : float
         Largest distillation error allowed (:func:`distillation_error_pct`), in (0, 100].
     degrees : tuple of int

@@ -11,6 +11,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 from pathlib import Path
 
 from mechlib.params import check_int
@@ -76,6 +77,7 @@ def rerun(
     here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
     done: set[str] = set()
     procs: dict[str, subprocess.Popen] = {}  # the chapters executing, to stop on a failure
+    stop = threading.Event()  # set on a failure: a chapter not yet started does not start
     with cf.ThreadPoolExecutor(max_workers=jobs) as pool:
         running: dict[cf.Future, Path] = {}
         while pending or running:
@@ -83,25 +85,37 @@ def rerun(
                 if len(running) >= jobs:
                     break
                 pending.remove(nb)
-                running[pool.submit(_execute, nb, out, env, python, procs)] = nb
+                running[pool.submit(_execute, nb, out, env, python, procs, stop)] = nb
             finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
             for fut in finished:
                 nb = running.pop(fut)
                 if fut.exception() is not None:  # a failed notebook stops the re-run at once:
-                    for proc in list(procs.values()):  # its sibling is stopped, not waited for
-                        proc.kill()
+                    with _STARTING:
+                        stop.set()
+                        for proc in list(procs.values()):  # its sibling: stopped, not awaited
+                            proc.kill()
                     fut.result()  # RuntimeError, naming the chapter
                 done.add(nb.stem)
 
 
 def _execute(
-    nb: Path, out: Path, env: dict[str, str], python: str, procs: dict[str, subprocess.Popen]
+    nb: Path,
+    out: Path,
+    env: dict[str, str],
+    python: str,
+    procs: dict[str, subprocess.Popen],
+    stop: threading.Event,
 ) -> None:
-    print(f"re-run: executing {nb.name}", flush=True)
     inputs = input_arguments(nb.stem, out / "records", strict=True)
     cmd = papermill_command(nb, out / nb.name, inputs, python=python)
-    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    procs[nb.stem] = proc
+    with _STARTING:  # a failure seen meanwhile stops this chapter before its process starts
+        if stop.is_set():
+            return
+        print(f"re-run: executing {nb.name}", flush=True)
+        proc = subprocess.Popen(
+            cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        procs[nb.stem] = proc
     _, stderr = proc.communicate()
     del procs[nb.stem]
     done = subprocess.CompletedProcess(cmd, proc.returncode, "", stderr)
@@ -111,6 +125,10 @@ def _execute(
             f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
             f"{out / nb.name}):\n{tail}"
         )
+
+
+#: held while a chapter's process starts or while a failure stops the others
+_STARTING = threading.Lock()
 
 
 def _untimed(path: Path) -> bytes:
