@@ -158,43 +158,17 @@ def check_increasing(
     ValueError
         If ``values`` is not 1-D, too short, not strictly increasing or has an entry out of range.
     """
-    return _check_monotone(name, values, low, high, low_open, min_len, sign=1)
-
-
-def check_decreasing(
-    name: str,
-    values: object,
-    *,
-    low: float | None = None,
-    high: float | None = None,
-    low_open: bool = False,
-    min_len: int = 2,
-) -> np.ndarray:
-    """As :func:`check_increasing`, for at least ``min_len`` strictly decreasing numbers."""
-    return _check_monotone(name, values, low, high, low_open, min_len, sign=-1)
-
-
-def _check_monotone(
-    name: str,
-    values: object,
-    low: float | None,
-    high: float | None,
-    low_open: bool,
-    min_len: int,
-    sign: int,
-) -> np.ndarray:
     arr = np.asarray(values, dtype=object)
     bounds = _range_text(low, high, low_open)
-    order = "increasing" if sign > 0 else "decreasing"
     if arr.ndim != 1 or arr.size < min_len:
         raise ValueError(
-            f"{name} must list at least {min_len} strictly {order} values{bounds}, "
+            f"{name} must list at least {min_len} strictly increasing values{bounds}, "
             f"got {np.asarray(values).tolist()}"
         )
     out = np.array([check_float(name, v, low=low, high=high, low_open=low_open) for v in arr])
-    if np.any(sign * np.diff(out) <= 0):
+    if np.any(np.diff(out) <= 0):
         raise ValueError(
-            f"{name} must list at least {min_len} strictly {order} values{bounds}, "
+            f"{name} must list at least {min_len} strictly increasing values{bounds}, "
             f"got {out.tolist()}"
         )
     return out

@@ -78,17 +78,3 @@ def test_table_number_format_shows_round_off_as_zero_but_not_nan() -> None:
     assert report.float_format(3)(0.0) == "0" and report.float_format(3)(1e-20) == "1e-20"
     with pytest.raises(ValueError, match="digits must be in"):
         report.float_format(0)
-
-
-def test_decreasing_values_are_checked_and_named_as_given() -> None:
-    from mechlib.params import check_decreasing
-
-    np.testing.assert_array_equal(
-        check_decreasing("f", [0.5, 0.25], low=0.1, high=1.0), [0.5, 0.25]
-    )
-    with pytest.raises(
-        ValueError, match=r"f must list at least 2 strictly decreasing .*\[0\.25, 0\.5\]"
-    ):
-        check_decreasing("f", [0.25, 0.5], low=0.1, high=1.0)
-    with pytest.raises(ValueError, match=r"strictly decreasing .*got \[0\.5, 0\.35\]"):
-        check_decreasing("f", "[0.5, 0.35]")  # a list passed as text is named as given

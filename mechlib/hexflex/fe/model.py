@@ -189,7 +189,7 @@ class HexFlexModel:
         """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: ``forces @ C.T`` with
         the :meth:`compliance` C (the pose is linear in the forces, so six back-substitutions
         serve any number of load cases: on the identified model 250 cases took 6.7 s as
-        back-substitutions and 0.2 s this way, agreeing within 4e-13 of the largest component)."""
+        back-substitutions, 0.2 s so, and agree within 4e-13 of the largest component)."""
         return self.check_forces(forces) @ self.compliance().T
 
     def poses_plain_sfepy(self, forces: object) -> np.ndarray:

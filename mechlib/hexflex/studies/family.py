@@ -26,7 +26,7 @@ from mechlib.hexflex.geometry import (
     DIMENSION_BOUNDS,
     HexFlexGeometry,
 )
-from mechlib.params import check_choice, check_float
+from mechlib.params import check_choice, check_float, check_increasing
 
 #: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
 #: radius of the beams (four magnitudes, five dimensions: the beam model's pre-fit picks the
@@ -172,6 +172,25 @@ def frame_reach(
         _, achieved = frame.prefit(target, g, free, young, poisson)
         out.append(100 * np.abs(np.asarray(achieved) / np.asarray(target) - 1).max())
     return np.array(out)
+
+
+def check_mesh_fractions(fractions: object) -> list[float]:
+    """The mesh study's flexure element sizes (fractions of the narrowest flexure width): at
+    least two, strictly decreasing, each in [0.1, 1] (the first is the chapter's own).
+
+    Raises
+    ------
+    ValueError
+        Naming ``mesh_fractions`` and the values as given.
+    """
+    arr = np.asarray(fractions, dtype=object)
+    what = "mesh_fractions must list at least 2 strictly decreasing values in [0.1, 1.0], got "
+    if arr.ndim != 1:
+        raise ValueError(what + f"{fractions!r}")
+    try:
+        return check_increasing("mesh_fractions", arr[::-1], low=0.1, high=1.0)[::-1].tolist()
+    except ValueError as err:
+        raise ValueError(what + f"{arr.tolist()}") from err
 
 
 def identify_member(
