@@ -121,11 +121,14 @@ test: $(STAMP)
 	@# FE workers and the unit tests share the two cores); then the determinism re-run: every
 	@# notebook again into $(RERUN), its FE tasks read from a copy of the first run's cache
 	@# (a seeded sample of them is recomputed cold by the last step, `determinism`). The FE
-	@# results store seeds the cache first, and a sample of it is recomputed cold at the end.
+	@# results store seeds the cache first, and a sample of it is recomputed cold beside the
+	@# re-run.
 	$(MAKE) --no-print-directory store-seed
 	$(MAKE) --no-print-directory -j2 unit notebooks
 	$(MAKE) --no-print-directory check-records
-	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments
+	@# the determinism re-run beside the store's cold sample: the re-run's chapters wait on
+	@# each other's records, and the sample's two processes use the cores they leave idle
+	$(MAKE) --no-print-directory -j2 rerun store-check FE_CACHE_FROM=$(BUILD)/cache/experiments
 	$(MAKE) --no-print-directory book
 	$(MAKE) --no-print-directory check-book
 	@if $(PY) -c 'import sys; from mechlib.pipeline.book.browser import find_browser; sys.exit(not find_browser())'; \
@@ -135,7 +138,6 @@ test: $(STAMP)
 	then $(MAKE) --no-print-directory pdf check-pdf; \
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
 	$(PIPELINE) determinism --records $(BUILD)/records --rerun $(RERUN)/records
-	$(MAKE) --no-print-directory store-check
 
 # --- the FE results store (store/) ----------------------------------------------------------------
 # The pose-level results of the notebooks' FE runs, computed once (`make store`) and kept in the

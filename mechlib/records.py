@@ -76,6 +76,7 @@ class Recorder:
     report: list[dict[str, Any]] = field(default_factory=list)
     glued: dict[str, dict[str, Any]] = field(default_factory=dict)
     paste: Callable[[str, Any], None] = field(default=paste, repr=False)
+    timings: dict[str, float] = field(default_factory=dict)
 
     def value(
         self,
@@ -116,7 +117,7 @@ class Recorder:
             A key or glue name used twice, a number without tolerance, a negative tolerance,
             a non-finite number, or a glued element that is not a number.
         """
-        if key in self.values:
+        if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
             raise ValueError(
@@ -183,6 +184,42 @@ class Recorder:
         if not name or name in self.glued:
             raise ValueError(f"glue name {name!r} is empty or was already used in {self.notebook}")
 
+    def timing(self, key: str, value: float, *, glue: str | None = None) -> float:
+        """Record a measured time (or a rate made from one) under ``key``: machine- and
+        load-dependent, so it is kept in the record's ``timings``, which neither the references
+        nor the determinism re-run compare; glued for the prose under ``glue``.
+
+        Parameters
+        ----------
+        key : str
+            Unique name among the record's values and timings.
+        value : float
+            The time (any unit the key names, e.g. ``_us``), finite and ≥ 0.
+        glue : str, optional
+            Glue name for the prose.
+
+        Returns
+        -------
+        float
+            ``value``, checked.
+
+        Raises
+        ------
+        ValueError
+            A key already recorded (as a value or a timing), a glue name used twice, or a value
+            that is not a finite number ≥ 0.
+        """
+        if key in self.values or key in self.timings:
+            raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
+        value = check_float(key, value, low=0.0)
+        if glue is not None:
+            self._check_name(glue)
+        self.timings[key] = value
+        if glue is not None:
+            self.glued[glue] = {"key": key, "timing": True}
+            self.paste(glue, value)
+        return value
+
     def save(self, folder: Path | None = None) -> Path:
         """Write ``<folder>/<notebook>.json`` deterministically and return its path."""
         folder = Path(folder) if folder is not None else records_dir()
@@ -194,6 +231,8 @@ class Recorder:
             "report": self.report,
             "glue": self.glued,
         }
+        if self.timings:  # machine-dependent: not compared (see :meth:`timing`)
+            payload["timings"] = self.timings
         path.write_text(json.dumps(payload, indent=1, sort_keys=True) + "\n")
         return path
 

@@ -47,6 +47,8 @@ def _fake_identify(miss: float):
 
     def fake(start, target, free, compliance_fn, surrogate_fn, max_evaluations, tol, **steer):
         seen.update(max_evaluations=max_evaluations, tol=tol, thickness=start.thickness)
+        assert steer == {"jacobian": "secant", "log_quantum": family.fit_log_quantum(tol)}
+        assert list(free) == list(family.FE_FREE)
         t = np.asarray(target, dtype=float)
         hist = np.zeros((max_evaluations, len(free) + 4))
         fit = ident.Identification(start, t * (1 + miss), t, max_evaluations, hist)
@@ -81,3 +83,13 @@ def test_member_thicknesses_exclude_the_identified_one_and_repeats():
         family.check_member_thicknesses([0.45, 0.45], 0.6416)
     with pytest.raises(ValueError, match=r"thickness \[mm\]"):
         family.check_member_thicknesses([0.1], 0.6416)
+
+
+def test_mesh_fractions_are_checked_as_decreasing_and_named_as_given():
+    assert family.check_mesh_fractions([0.5, 0.25]) == [0.5, 0.25]
+    with pytest.raises(ValueError, match=r"strictly decreasing .*got \[0\.25, 0\.5\]"):
+        family.check_mesh_fractions([0.25, 0.5])
+    with pytest.raises(ValueError, match=r"mesh_fractions .*got '\[0\.5, 0\.35\]'"):
+        family.check_mesh_fractions("[0.5, 0.35]")  # a list passed as text
+    with pytest.raises(ValueError, match=r"in \[0\.1, 1\.0\], got \[0\.5, 0\.05\]"):
+        family.check_mesh_fractions([0.5, 0.05])

@@ -235,3 +235,13 @@ def test_the_landing_page_says_what_made_the_build(records: dict[str, dict[str, 
     assert made in page and page.index(made) > page.index("## This build")
     assert provenance.commit(Path("/")) == provenance.UNKNOWN  # not a repository
     assert provenance.versions(("no-such-package-xyz",)) == {"no-such-package-xyz": "unknown"}
+
+
+def test_a_quote_reads_a_timing_when_no_value_has_its_key() -> None:
+    from mechlib.pipeline.landing import quote
+
+    records = {"nb": {"values": {"a": {"value": [1.0, 3.0]}}, "timings": {"t_us": 42.0}}}
+    assert quote(records, ("nb", "t_us", None)) == 42.0
+    assert quote(records, ("nb", "a", "max")) == 3.0
+    with pytest.raises(KeyError, match="recorded no value 'b'"):
+        quote(records, ("nb", "b", None))

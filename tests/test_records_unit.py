@@ -165,6 +165,23 @@ def test_a_rerun_names_the_notebook_that_failed_and_a_missing_record(tmp_path: P
     assert len(problems) == 1 and "broken: no re-run record" in problems[0]
 
 
+def test_a_failed_chapter_stops_the_rerun_without_waiting_for_its_sibling(tmp_path: Path) -> None:
+    import time
+
+    nbformat = pytest.importorskip("nbformat")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    for name, code in (("broken", 'raise ValueError("probe_broke")'),
+                       ("slow", "import time\ntime.sleep(120)")):  # fmt: skip
+        nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
+        nb.metadata["kernelspec"] = {"name": "python3", "language": "python", "display_name": "Py"}
+        nbformat.write(nb, notebooks / f"{name}.ipynb")
+    t0 = time.monotonic()
+    with pytest.raises(RuntimeError, match=r"re-run of broken\.ipynb failed"):
+        rerun(notebooks, tmp_path / "out", jobs=2)
+    assert time.monotonic() - t0 < 60  # the sleeping sibling (120 s) was stopped
+
+
 # --- one call: record, glue, report ------------------------------------------------------------
 def _pasting() -> tuple[Recorder, dict]:
     pasted: dict = {}
@@ -296,3 +313,34 @@ def test_the_rerun_runs_two_chapters_at_a_time_each_after_its_inputs(tmp_path: P
     assert got["hexflex_model"]["saw_the_other_running"]["value"] is True
     with pytest.raises(ValueError, match="jobs"):
         rerun(notebooks, tmp_path / "out", jobs=0)
+
+
+def test_a_timing_is_kept_apart_glued_and_ignored_by_the_determinism_check(tmp_path: Path) -> None:
+    rec, pasted = _pasting()
+    rec.value("model.worst_pct", 0.05, rtol=1e-3)
+    rec.timing("model.single_us", 42.5, glue="single_us")
+    assert pasted == {"single_us": 42.5}
+    with pytest.raises(ValueError, match="already recorded"):
+        rec.timing("model.worst_pct", 1.0)
+    with pytest.raises(ValueError, match=r"model\.slow_us"):
+        rec.timing("model.slow_us", float("nan"))
+    first = load(rec.save(tmp_path / "a"))
+    assert (
+        first["timings"] == {"model.single_us": 42.5} and "model.single_us" not in first["values"]
+    )
+    assert quoted.unchecked_glue(first, ["single_us"]) == []
+    again = Recorder("nb", paste=lambda *a: None)
+    again.value("model.worst_pct", 0.05, rtol=1e-3)
+    again.timing("model.single_us", 51.0, glue="single_us")
+    again.save(tmp_path / "b")
+    notebooks = tmp_path / "notebooks"
+    notebooks.mkdir()
+    (notebooks / "nb.ipynb").write_text("{}")
+    assert rerun_differences(tmp_path / "a", tmp_path / "b", notebooks) == []
+    other = Recorder("nb", paste=lambda *a: None)
+    other.value("model.worst_pct", 0.06, rtol=1e-3)
+    other.timing("model.single_us", 42.5)
+    other.save(tmp_path / "c")
+    assert rerun_differences(tmp_path / "a", tmp_path / "c", notebooks)  # a value changed
+    # a record without timings is written as before (no empty section)
+    assert "timings" not in load(Recorder("plain", paste=lambda *a: None).save(tmp_path))

@@ -147,7 +147,7 @@ def n_terms(family: str, n_inputs: int) -> int:
     }[family]
 
 
-def _exponents(n_inputs: int, degree: int) -> np.ndarray:
+def total_degree_exponents(n_inputs: int, degree: int) -> np.ndarray:
     """Exponents (terms, inputs) of every monomial of total degree ≤ ``degree``, graded order."""
     rows = [np.zeros(n_inputs, dtype=int)]
     for d in range(1, degree + 1):
@@ -160,7 +160,7 @@ def _monomials(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
     return np.prod(u[:, None, :] ** exps[None, :, :], axis=2)
 
 
-def _legendre(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
+def legendre_products(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
     """Products of Legendre polynomials √(2k+1) Pₖ (unit variance for uniform u in [-1, 1])."""
     deg = int(exps.max())
     vander = np.polynomial.legendre.legvander(u, deg)  # (runs, inputs, deg + 1)
@@ -194,8 +194,8 @@ def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
     from sklearn.linear_model import LassoLarsCV
     from sklearn.model_selection import KFold
 
-    exps = _exponents(u.shape[1], PCE_DEGREE)
-    a = _legendre(u, exps)
+    exps = total_degree_exponents(u.shape[1], PCE_DEGREE)
+    a = legendre_products(u, exps)
     folds = KFold(PCE_CV_FOLDS, shuffle=True, random_state=seed)
     coef = np.zeros((len(exps), y.shape[1]))
     for j in range(y.shape[1]):
@@ -269,7 +269,7 @@ def fit_surrogate(
         elif family == "quadratic":
             state = {"coef": quadratic.fit_quadratic(x, y)["coef"]}
         elif family == "cubic":
-            exps = _exponents(x.shape[1], CUBIC_DEGREE)
+            exps = total_degree_exponents(x.shape[1], CUBIC_DEGREE)
             coef, *_ = np.linalg.lstsq(_monomials(u, exps), y, rcond=None)
             state = {"exponents": exps, "coef": coef}
         elif family == "gp":
@@ -369,7 +369,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
     if surrogate.family == "gp":
         gp = np.column_stack([m.predict(u) for m in s["models"]])
         return s["b0"] + u @ s["S"].T + gp
-    return _legendre(u, s["exponents"]) @ s["coef"]
+    return legendre_products(u, s["exponents"]) @ s["coef"]
 
 
 def predict(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) -> np.ndarray:

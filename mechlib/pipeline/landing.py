@@ -95,10 +95,11 @@ def quote(records: verdicts.Records, where: Quote) -> float:
         When the quoted element is not one number.
     """
     notebook, key, index = where
-    values = records.get(notebook, {}).get("values", {})
-    if key not in values:
+    record = records.get(notebook, {})
+    values, timings = record.get("values", {}), record.get("timings", {})
+    if key not in values and key not in timings:
         raise KeyError(f"landing: {notebook} recorded no value {key!r}")
-    arr = np.asarray(values[key]["value"], dtype=float)
+    arr = np.asarray(values[key]["value"] if key in values else timings[key], dtype=float)
     item = (
         arr.max()
         if index == "max"

@@ -5,11 +5,13 @@ byte with the first run's (``make rerun``, then the last step of ``make test``).
 from __future__ import annotations
 
 import concurrent.futures as cf
+import json
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 from pathlib import Path
 
 from mechlib.params import check_int
@@ -74,6 +76,8 @@ def rerun(
     pending = in_order(Path(notebooks).glob("*.ipynb"))
     here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
     done: set[str] = set()
+    procs: dict[str, subprocess.Popen] = {}  # the chapters executing, to stop on a failure
+    stop = threading.Event()  # set on a failure: a chapter not yet started does not start
     with cf.ThreadPoolExecutor(max_workers=jobs) as pool:
         running: dict[cf.Future, Path] = {}
         while pending or running:
@@ -81,25 +85,60 @@ def rerun(
                 if len(running) >= jobs:
                     break
                 pending.remove(nb)
-                running[pool.submit(_execute, nb, out, env, python)] = nb
+                running[pool.submit(_execute, nb, out, env, python, procs, stop)] = nb
             finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
             for fut in finished:
                 nb = running.pop(fut)
-                fut.result()  # a failed notebook stops the re-run (RuntimeError, named)
+                if fut.exception() is not None:  # a failed notebook stops the re-run at once:
+                    with _STARTING:
+                        stop.set()
+                        for proc in list(procs.values()):  # its sibling: stopped, not awaited
+                            proc.kill()
+                    fut.result()  # RuntimeError, naming the chapter
                 done.add(nb.stem)
 
 
-def _execute(nb: Path, out: Path, env: dict[str, str], python: str) -> None:
-    print(f"re-run: executing {nb.name}", flush=True)
+def _execute(
+    nb: Path,
+    out: Path,
+    env: dict[str, str],
+    python: str,
+    procs: dict[str, subprocess.Popen],
+    stop: threading.Event,
+) -> None:
     inputs = input_arguments(nb.stem, out / "records", strict=True)
     cmd = papermill_command(nb, out / nb.name, inputs, python=python)
-    done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    with _STARTING:  # a failure seen meanwhile stops this chapter before its process starts
+        if stop.is_set():
+            return
+        print(f"re-run: executing {nb.name}", flush=True)
+        proc = subprocess.Popen(
+            cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        procs[nb.stem] = proc
+    _, stderr = proc.communicate()
+    del procs[nb.stem]
+    done = subprocess.CompletedProcess(cmd, proc.returncode, "", stderr)
     if done.returncode != 0:
         tail = "\n".join(done.stderr.splitlines()[-20:])
         raise RuntimeError(
             f"the re-run of {nb.name} failed (exit {done.returncode}; traceback in "
             f"{out / nb.name}):\n{tail}"
         )
+
+
+#: held while a chapter's process starts or while a failure stops the others
+_STARTING = threading.Lock()
+
+
+def _untimed(path: Path) -> bytes:
+    """A record's bytes, or, when it holds ``timings``, its canonical text without them."""
+    raw = path.read_bytes()
+    data = json.loads(raw)
+    if "timings" not in data:
+        return raw
+    del data["timings"]
+    return (json.dumps(data, indent=1, sort_keys=True) + "\n").encode()
 
 
 def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> list[str]:
@@ -115,7 +154,7 @@ def rerun_differences(records: Path, rerun_records: Path, notebooks: Path) -> li
         ]
         if missing:
             problems.append(f"{nb.stem}: no " + " and no ".join(missing))
-        elif second.read_bytes() != first.read_bytes():
+        elif _untimed(second) != _untimed(first):  # timings differ run to run, by nature
             diffs = compare(load(second), load(first))
             problems.append(f"{nb.stem}: second run differs: {diffs or 'formatting only'}")
     return problems

@@ -40,7 +40,7 @@ from mechlib.hexflex.fe.model import (
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
-from mechlib.params import check_choice, check_int
+from mechlib.params import check_choice, check_float, check_int
 
 #: task kinds: linear runs, non-linear runs, and the model's size (its free DOFs, one row of
 #: zero forces), cached like the runs so that a build reading the cache builds no model for it
@@ -97,9 +97,12 @@ class ModelSpec:
         check_choice("mesh", self.mesh, MESHES)
         if self.mesh == "lean" and self.element != "q2":
             raise ValueError(f"mesh 'lean' is Q2: element must be 'q2', got {self.element!r}")
-        if self.mesh == "lean" and self.coarsening is not None:
-            raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, got "
-                             f"{self.coarsening!r}")  # fmt: skip
+        if self.coarsening is not None:  # a float (2 and 2.0: one key), in its range
+            c = check_float("coarsening", self.coarsening, low=1.0, high=64.0)
+            object.__setattr__(self, "coarsening", c)
+            if self.mesh == "lean":
+                raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, "
+                                 f"got {self.coarsening!r}")  # fmt: skip
 
     def key(self) -> str:
         """Stable text of the specification (cache key ingredient; a ``coarsening`` of None is
@@ -243,7 +246,8 @@ def run_experiments(
     pose: str = "small",
 ) -> np.ndarray:
     """Stage poses (n, 6) [µm, µrad] of the experiments of a force design (n, 6) [N] (or, as
-    ``pose`` says, the three conventions side by side or what each non-linear solve spent).
+    ``pose`` says, the three conventions side by side or what each non-linear solve spent; for
+    ``kind="size"``, (n, 1) the model's DOF count, see :func:`model_size`).
 
     Parameters
     ----------
@@ -351,8 +355,21 @@ def run_experiments(
 
 
 def model_size(spec: ModelSpec, cache_dir: Path | None = None) -> int:
-    """Free DOFs of ``spec``'s model, read from ``cache_dir`` when a build counted them before
-    (a ``"size"`` task of :func:`run_experiments`; ``None``: no cache, the model is built)."""
+    """Free DOFs of ``spec``'s model, read from ``cache_dir`` when a build counted them before.
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        The FE model.
+    cache_dir : Path, optional
+        Folder of cached task results (a ``"size"`` task of :func:`run_experiments`); None: no
+        cache, the model is built.
+
+    Returns
+    -------
+    int
+        The number of free degrees of freedom (after clamping the ground).
+    """
     zeros = np.zeros((1, 6))
     return int(run_experiments(spec, zeros, kind="size", cache_dir=cache_dir, progress=False)[0, 0])
 

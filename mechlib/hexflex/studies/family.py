@@ -26,7 +26,7 @@ from mechlib.hexflex.geometry import (
     DIMENSION_BOUNDS,
     HexFlexGeometry,
 )
-from mechlib.params import check_float
+from mechlib.params import check_choice, check_float, check_increasing
 
 #: The dimensions re-identified for a member: the flexures' in-plane widths and lengths and the
 #: radius of the beams (four magnitudes, five dimensions: the beam model's pre-fit picks the
@@ -38,10 +38,11 @@ FAMILY_FREE: tuple[str, ...] = (
     "radial_width",
     "beam_radius",
 )
-#: The dimensions the FE fit of a member moves: as many as magnitudes, so that the FE member is
-#: an isolated solution, reached whatever the path (the radial width keeps the pre-fit's value).
-#: Of the five, dropping the radial width leaves the best-conditioned four (the beam model's
-#: log-sensitivities: smallest singular value 0.17 at 0.45 mm, 0.22 at 0.55 mm).
+#: The dimensions the FE fit of a member moves: as many as magnitudes, so that the FE members
+#: meeting the target form isolated points (not a curve), and fits that converge end within the
+#: tolerance of one of them (the radial width keeps the pre-fit's value). The beam model's
+#: log-sensitivities of these four are well conditioned at the members' pre-fits (smallest
+#: singular value about 0.2 at 0.45 and 0.55 mm).
 FE_FREE: tuple[str, ...] = ("beam_width", "beam_length", "radial_length", "beam_radius")
 #: Decimals [mm] of the pre-fit that starts a member's FE fit (1 µm): the pre-fit's least squares
 #: ends within ~3e-7 mm of its optimum, differently on another processor, so on a finer grid
@@ -50,8 +51,16 @@ START_DECIMALS = 3
 #: log(achieved / target) of a member's FE fit is read to this quantum
 #: (:func:`mechlib.hexflex.identify.identify`'s ``log_quantum``): far above the FE's
 #: round-off between processors (measured on a 0.45 mm member, OpenBLAS Haswell vs
-#: Sandybridge kernels: 4.6e-9 of the compliance) and ten times below the fit tolerance.
+#: Sandybridge kernels: 4.6e-9 of the compliance) and ten times below the default tolerance.
 FIT_LOG_QUANTUM = 1e-4
+
+
+def fit_log_quantum(tol: float) -> float | None:
+    """The quantum a member's FE fit reads its misfits to at tolerance ``tol``:
+    :data:`FIT_LOG_QUANTUM`, or a tenth of ``tol`` when that is smaller; None (no rounding)
+    below a tolerance of 1e-7, where the quantum would reach the FE's own round-off."""
+    tol = check_float("tol", tol, low=0.0, high=1.0, low_open=True)
+    return min(FIT_LOG_QUANTUM, tol / 10) if tol >= 1e-7 else None
 
 
 @dataclass(frozen=True)
@@ -165,6 +174,25 @@ def frame_reach(
     return np.array(out)
 
 
+def check_mesh_fractions(fractions: object) -> list[float]:
+    """The mesh study's flexure element sizes (fractions of the narrowest flexure width): at
+    least two, strictly decreasing, each in [0.1, 1] (the first is the chapter's own).
+
+    Raises
+    ------
+    ValueError
+        Naming ``mesh_fractions`` and the values as given.
+    """
+    arr = np.asarray(fractions, dtype=object)
+    what = "mesh_fractions must list at least 2 strictly decreasing values in [0.1, 1.0], got "
+    if arr.ndim != 1:
+        raise ValueError(what + f"{fractions!r}")
+    try:
+        return check_increasing("mesh_fractions", arr[::-1], low=0.1, high=1.0)[::-1].tolist()
+    except ValueError as err:
+        raise ValueError(what + f"{arr.tolist()}") from err
+
+
 def identify_member(
     target: Sequence[float],
     start: HexFlexGeometry,
@@ -183,11 +211,14 @@ def identify_member(
 
     The beam model's pre-fit picks the member nearest ``start`` (:func:`frame.prefit`, ``free``
     fitted), rounded to :data:`START_DECIMALS`; the FE fit then moves ``fe_free`` alone (as many
-    dimensions as magnitudes: an isolated solution, whatever the path) with secant-updated
-    steps, reading the FE's misfits to :data:`FIT_LOG_QUANTUM` (:func:`identify.identify`). On
-    another processor the FE's round-off (~5e-9) moves no rounded value except by the rare
-    coincidence of lying that close to a rounding boundary, so the member is the same; should
-    it happen, the path changes and the member moves within the fit's tolerance.
+    dimensions as magnitudes: the members meeting the target are isolated points, and a fit
+    that converges ends within ``tol`` of one) with secant-updated steps, reading the FE's
+    misfits to :func:`fit_log_quantum` (:func:`identify.identify`). Which point within ``tol``
+    it stops at depends on its path, and the path on nothing but rounded values: on another
+    processor the pre-fit's spread (~3e-7 mm against the 1 µm grid) and the FE's round-off
+    (~5e-9 against the quantum) change a rounded value only where it lies that close to a
+    rounding boundary (a chance of order 1e-3 for a member); then the path changes and the
+    member moves within the fit's tolerance.
 
     Parameters
     ----------
@@ -227,11 +258,12 @@ def identify_member(
         names the thickness, the misfit reached and ``tol``).
     """
     g = start.replace(thickness=check_thickness(thickness))
-    fe_free = ident.check_free(fe_free)
-    if len(fe_free) > len(ident.TARGET_LABELS) or not set(fe_free) <= set(free):
+    free = ident.check_free(free)
+    fe_free = [check_choice("fe_free", n, tuple(free)) for n in fe_free]
+    if not 0 < len(set(fe_free)) == len(fe_free) <= len(ident.TARGET_LABELS):
         raise ValueError(
-            f"fe_free must be at most {len(ident.TARGET_LABELS)} of free = {list(free)}, "
-            f"got {fe_free}"
+            f"fe_free must be 1 to {len(ident.TARGET_LABELS)} distinct names of free = "
+            f"{free}, got {fe_free}"
         )
     prefit, _ = frame.prefit(target, g, free, young, poisson)
     prefit = prefit.replace(**{n: round(getattr(prefit, n), START_DECIMALS) for n in free})
@@ -248,7 +280,7 @@ def identify_member(
             max_evaluations=max_evaluations,
             tol=tol,
             jacobian="secant",
-            log_quantum=min(FIT_LOG_QUANTUM, tol / 10),
+            log_quantum=fit_log_quantum(tol),
         )
     except ident.IdentificationError as err:
         raise ident.IdentificationError(

@@ -47,8 +47,9 @@ def unchecked_glue(record: dict[str, Any], names: Iterable[str]) -> list[str]:
             problems.append(f"{record['notebook']}: {name!r} is quoted but not glued by Recorder")
             continue
         keys = entry.get("key", "") or entry.get("text_of", "")
+        known = record.get("timings", {}) if entry.get("timing") else values
         for key in filter(None, (k.strip() for k in keys.split(","))):
-            if key not in values:
+            if key not in known:
                 problems.append(
                     f"{record['notebook']}: {name!r} is glued from {key!r}, not recorded"
                 )
