@@ -25,6 +25,8 @@ CV_FOLDS = 5
 """Default number of folds of :func:`cross_validate`."""
 LATENCY_REPEATS = 21
 """Default number of timed repeats of :func:`latency_us` (the median is returned)."""
+SINGLE_CALLS = 20
+"""One-pose calls :func:`latency_us` times back to back in each repeat."""
 US_PER_S = 1e6
 """Microseconds per second."""
 
@@ -152,22 +154,28 @@ def latency_us(
     Returns
     -------
     dict
-        ``batched``: one call on all runs, divided by the number of runs; ``single``: one call
-        on one pose (the runs in turn). Both in µs per pose, the median over ``repeats``.
+        ``batched``: one call on all runs, divided by the number of runs; ``single``: calls of
+        one pose each, back to back as in a control loop (:data:`SINGLE_CALLS` consecutive
+        poses a repeat), divided by the number of calls. Both in µs per pose, the median over
+        ``repeats``; the batched and single calls are timed in separate loops, so that a large
+        batch does not leave the caches cold for a single call.
     """
     x = check_forces(surrogate, forces)
     repeats = check_int("repeats", repeats, low=1, high=10_000)
+    n_single = min(len(x), SINGLE_CALLS)
     batched, single = [], []
     with threadpool_limits(limits=1, user_api="blas"):
         predict_array(surrogate, x[:1])  # warm-up (imports, caches)
-        for r in range(repeats):
+        for _ in range(repeats):
             t0 = time.perf_counter()
             predict_array(surrogate, x)
             batched.append((time.perf_counter() - t0) / len(x))
-            one = x[r % len(x)][None, :]
+        rows = [x[i % len(x)][None, :] for i in range(repeats * n_single)]
+        for r in range(repeats):
             t0 = time.perf_counter()
-            predict_array(surrogate, one)
-            single.append(time.perf_counter() - t0)
+            for one in rows[r * n_single : (r + 1) * n_single]:
+                predict_array(surrogate, one)
+            single.append((time.perf_counter() - t0) / n_single)
     return {
         "batched": float(np.median(batched) * US_PER_S),
         "single": float(np.median(single) * US_PER_S),
