@@ -13,11 +13,9 @@ from mechlib.plotting.style import figure_and_axes
 MARKERS = "osD^v<>ph*"
 
 
-def _budget(ax, budget_pct: float, horizontal: bool = True) -> None:
-    if horizontal:
-        ax.axhline(budget_pct, color="k", lw=0.8, ls="--", label=f"{budget_pct:g} % budget")
-    else:
-        ax.axvline(budget_pct, color="k", lw=0.8, ls="--", label=f"{budget_pct:g} % budget")
+def _budget(ax, budget_pct: float, horizontal: bool = True, word: str = "budget") -> None:
+    line = ax.axhline if horizontal else ax.axvline
+    line(budget_pct, color="k", lw=0.8, ls="--", label=f"{budget_pct:g} % {word}")
 
 
 def learning_curves(
@@ -27,10 +25,12 @@ def learning_curves(
     points: Mapping[str, tuple[float, float]],
     budget_pct: float,
     ax=None,
+    budget_word: str = "budget",
 ) -> Figure:
     """Largest validation error (% of a component's range, worst component) against the number
     of full FE training runs: one line per family (``worst_pct`` (families, sizes); NaN where a
-    family cannot be fitted) and single points (``points``: name → (runs, error))."""
+    family cannot be fitted) and single points (``points``: name → (runs, error)); the dashed
+    line at ``budget_pct`` is labelled with ``budget_word`` ("budget", "goal", ...)."""
     fig, ax = figure_and_axes(ax, (6.4, 4.0))
     w = np.asarray(worst_pct, dtype=float)
     for k, name in enumerate(names):
@@ -39,7 +39,7 @@ def learning_curves(
             ax.plot(np.asarray(sizes)[ok], w[k][ok], marker=MARKERS[k % len(MARKERS)], label=name)
     for j, (name, (n, e)) in enumerate(points.items()):
         ax.plot([n], [e], ls="none", marker=MARKERS[-1 - j], ms=9, label=name)
-    _budget(ax, budget_pct)
+    _budget(ax, budget_pct, word=budget_word)
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("full non-linear FE runs used for training")

@@ -94,6 +94,14 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "Scatter plot on logarithmic axes, one marker per model, with a horizontal dashed "
             "budget line and a vertical dotted deadline line.",
         ),
+        "rt-01": (
+            "Largest error at ±1 N (worst pose component, % of its range) against the full "
+            "non-linear runs used for training: the plain Gaussian process, and the "
+            "reduced-order model corrected by a Gaussian process fitted to its misses; the "
+            "uncorrected reduced-order model as a marker; dashed: the accuracy goal.",
+            "Log-log plot of error in percent against training runs, two lines and one marker, "
+            "with a horizontal dashed goal line.",
+        ),
     },
     "virtual_experiments": {
         "cell-09": (
