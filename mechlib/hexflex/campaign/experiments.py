@@ -59,11 +59,7 @@ SOLVE_STATS: tuple[str, ...] = ("corrections", "factorisations", "restarts", "re
 POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 #: columns a task returns (and the cache and the results store keep) per run: its poses, then,
 #: for a non-linear run, its ``SOLVE_STATS``
-RESULT_COLUMNS = {
-    "linear": 6,
-    "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS),
-    "size": 1,
-}
+RESULT_COLUMNS = {**POSE_COLUMNS, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
 #: FE mesh recipes a :class:`ModelSpec` names
@@ -355,21 +351,9 @@ def run_experiments(
 
 
 def model_size(spec: ModelSpec, cache_dir: Path | None = None) -> int:
-    """Free DOFs of ``spec``'s model, read from ``cache_dir`` when a build counted them before.
-
-    Parameters
-    ----------
-    spec : ModelSpec
-        The FE model.
-    cache_dir : Path, optional
-        Folder of cached task results (a ``"size"`` task of :func:`run_experiments`); None: no
-        cache, the model is built.
-
-    Returns
-    -------
-    int
-        The number of free degrees of freedom (after clamping the ground).
-    """
+    """Free DOFs (after clamping the ground) of ``spec``'s model, read from ``cache_dir`` when a
+    build counted them before (a ``"size"`` task of :func:`run_experiments`, one row of zero
+    forces); ``cache_dir=None``: no cache, the model is built."""
     zeros = np.zeros((1, 6))
     return int(run_experiments(spec, zeros, kind="size", cache_dir=cache_dir, progress=False)[0, 0])
 
