@@ -36,7 +36,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 unexport PYTHONDONTWRITEBYTECODE
 
 .PHONY: help env book test unit notebooks rerun check-records check-book check-browser run references lint \
-        bench lock clean store store-seed store-check
+        bench lock clean store store-seed store-check book-checks determinism-check
 
 help:
 	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
@@ -129,6 +129,10 @@ test: $(STAMP)
 	@# the determinism re-run beside the store's cold sample: the re-run's chapters wait on
 	@# each other's records, and the sample's two processes use the cores they leave idle
 	$(MAKE) --no-print-directory -j2 rerun store-check FE_CACHE_FROM=$(BUILD)/cache/experiments
+	@# the book and its checks (from the first run) beside the determinism check's cold sample
+	$(MAKE) --no-print-directory -j2 book-checks determinism-check
+
+book-checks: $(STAMP)
 	$(MAKE) --no-print-directory book
 	$(MAKE) --no-print-directory check-book
 	@if $(PY) -c 'import sys; from mechlib.pipeline.book.browser import find_browser; sys.exit(not find_browser())'; \
@@ -137,6 +141,8 @@ test: $(STAMP)
 	@if $(PY) -m mechlib.pipeline.pdf tools; \
 	then $(MAKE) --no-print-directory pdf check-pdf; \
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
+
+determinism-check: $(STAMP)
 	$(PIPELINE) determinism --records $(BUILD)/records --rerun $(RERUN)/records
 
 # --- the FE results store (store/) ----------------------------------------------------------------
