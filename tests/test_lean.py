@@ -200,3 +200,17 @@ def test_lean_stand_in_is_fitted_to_the_default_models_magnitudes(monkeypatch) -
         leanmesh.lean_spec(stand_in)
     with pytest.raises(ValueError, match="default-mesh Q2"):
         leanmesh.lean_spec(ex.ModelSpec(SMALL, element="q1"))
+
+
+def test_the_criteria_hold_only_when_every_difference_is_within_its_limit() -> None:
+    ok_pose, ok_dep = np.full(6, 0.5 * leanmesh.POSE_PCT), np.full(6, 0.5 * leanmesh.DEPARTURE_PCT)
+    assert leanmesh.meets_criteria(ok_pose, ok_dep)
+    assert leanmesh.meets_criteria(np.full(6, leanmesh.POSE_PCT), ok_dep)  # on the limit
+    assert not leanmesh.meets_criteria(np.r_[ok_pose[:5], 1.01 * leanmesh.POSE_PCT], ok_dep)
+    assert not leanmesh.meets_criteria(ok_pose, np.r_[1.01 * leanmesh.DEPARTURE_PCT, ok_dep[1:]])
+    assert not leanmesh.meets_criteria(ok_pose, ok_dep, failed_on_lean_only=1)
+    for bad in (np.array([]), np.r_[ok_pose[:5], np.nan]):
+        with pytest.raises(ValueError, match="pose_pct must be finite and not empty"):
+            leanmesh.meets_criteria(bad, ok_dep)
+    with pytest.raises(ValueError, match="failed_on_lean_only"):
+        leanmesh.meets_criteria(ok_pose, ok_dep, failed_on_lean_only=-1)

@@ -61,3 +61,57 @@ def test_bad_distillation_settings_are_refused_by_name() -> None:
         rt.distill(teacher, 5, n_samples=256)
     with pytest.raises(ValueError, match="degrees must be increasing"):
         rt.distill_to(teacher, 1.0, degrees=(4, 3))
+
+
+def test_an_error_model_on_informative_indicators_learns_the_miss() -> None:
+    x, held = 2 * RNG.random((64, 6)) - 1, 2 * RNG.random((300, 6)) - 1
+    low_t, low_v = x @ S.T, held @ S.T  # the low-fidelity model: the linear part
+    miss_t, miss_v = _truth(x) - low_t, _truth(held) - low_v
+    # indicators that estimate the miss roughly (scaled and bent), as a residual does
+    noisy = 0.5 * miss_v + 0.1 * miss_v**2
+    informative = rt.indicator_curve(
+        [8, 64], (low_t, 0.5 * miss_t + 0.1 * miss_t**2, _truth(x)),
+        (low_v, noisy, _truth(held)), seed=1,
+    )  # fmt: skip
+    unrelated = rt.indicator_curve(
+        [64], (low_t, RNG.normal(size=(64, 6)), _truth(x)),
+        (low_v, RNG.normal(size=(300, 6)), _truth(held)), seed=1,
+    )  # fmt: skip
+    plain = 100 * (np.abs(miss_v).max(axis=0) / np.abs(_truth(held)).max(axis=0)).max()
+    assert informative[1] < plain / 20 and informative[1] < informative[0]
+    assert unrelated[0] > plain / 2  # noise as indicators: no better than no correction
+    # beyond the training indicators' range the model extrapolates (not refused)
+    model = rt.indicator_correction(np.c_[x[:, :1]], miss_t[:, :2], seed=1)
+    assert model(np.array([[3.0]])).shape == (1, 2)
+
+
+def test_indicator_correlation_is_pearsons_per_column() -> None:
+    a, b = RNG.normal(size=(40, 3)), RNG.normal(size=(40, 3))
+    b[:, 0] = 2 * a[:, 0] + 1
+    expected = [np.corrcoef(a[:, j], b[:, j])[0, 1] for j in range(3)]
+    np.testing.assert_allclose(rt.indicator_correlation(a, b), expected, rtol=1e-12)
+    assert rt.indicator_correlation(a, b)[0] == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="constant column"):
+        rt.indicator_correlation(np.ones((5, 2)), RNG.normal(size=(5, 2)))
+
+
+def test_the_teacher_is_the_smallest_cv_error_and_leaves_its_student_the_rest() -> None:
+    assert rt.choose_teacher({"a": 0.2, "b": 0.1}, 0.25) == ("b", pytest.approx(0.15))
+    # a teacher beyond the goal: its student may add a tenth of the teacher's own error
+    assert rt.choose_teacher({"a": 0.6, "b": 0.4}, 0.25) == ("b", pytest.approx(0.04))
+    with pytest.raises(ValueError, match="at least one candidate"):
+        rt.choose_teacher({}, 0.25)
+    with pytest.raises(ValueError, match="goal_pct"):
+        rt.choose_teacher({"a": 0.1}, 0.0)
+    with pytest.raises(ValueError, match=r"cv_pct\['a'\]"):
+        rt.choose_teacher({"a": float("nan")}, 0.25)
+
+
+def test_bad_indicator_input_is_refused_by_name() -> None:
+    with pytest.raises(ValueError, match="all-zero column"):
+        rt.indicator_correction(np.c_[np.ones(5), np.zeros(5)], np.ones((5, 1)))
+    with pytest.raises(ValueError, match="at least 2 runs"):
+        rt.indicator_correction(np.ones((1, 2)), np.ones((1, 1)))
+    with pytest.raises(ValueError, match="sizes"):
+        z = (np.zeros((4, 1)), np.ones((4, 1)), np.ones((4, 1)))
+        rt.indicator_curve([8], z, z)

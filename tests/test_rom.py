@@ -8,7 +8,7 @@ from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import m
 from mechlib.hexflex.fe.model import HexFlexModel
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.rom import basis as rb
-from mechlib.hexflex.rom import ecsw
+from mechlib.hexflex.rom import ecsw, indicators
 from mechlib.hexflex.rom import model as rm
 
 #: The ROMs' force range [N]: the small model departs from linear by ≈ 7 % of a pose
@@ -205,3 +205,41 @@ def test_bad_input_is_refused(
     with pytest.raises(ValueError, match="did not converge in 1 iterations"):
         hyper.poses(_forces(1, RANGE))
     assert np.array_equal(hyper.poses(np.zeros(6)), np.zeros((1, 6)))  # no iteration needed
+
+
+def test_one_exact_newton_correction_from_the_rom_state_nearly_reaches_the_full_solve(
+    solver: NonlinearSolver, hyper: rm.ReducedOrderModel
+) -> None:
+    f = _forces(3, RANGE, seed=11)
+    full = np.array([solver.model.pose_of(solver.solve(x)[0]) for x in f])
+    span = np.abs(full).max(axis=0)
+    rom = hyper.poses(f)
+    exact = indicators.dual_weighted_residuals(hyper, solver, f, tangent="exact")
+    linear = indicators.dual_weighted_residuals(hyper, solver, f)
+    before = (np.abs(rom - full).max(axis=0) / span).max()
+    # a Newton step from the ROM's state: the error squared (quadratic convergence), measured
+    # 7e-3 of the ROM's here; its sign flipped it would double the error
+    assert (np.abs(rom + exact - full).max(axis=0) / span).max() < 0.02 * before
+    # through K₀ the same residual gives a rougher estimate, still of the error's size and sign
+    assert (np.abs(rom + linear - full).max(axis=0) / span).max() < before
+    # the linear indicator is −P K₀⁻¹ r, computed here without the adjoint
+    model, v = solver.model, hyper.basis
+    q = hyper.coordinates(f[0])[0]
+    r = solver.batched.internal_force(v @ q) - model.load_vectors() @ f[0]
+    np.testing.assert_allclose(linear[0], -model.pose_of(model.back_substitute(r)), rtol=1e-8,
+                               atol=1e-12 * np.abs(linear[0]).max())  # fmt: skip
+
+
+def test_indicators_refuse_bad_input(solver: NonlinearSolver, hyper: rm.ReducedOrderModel) -> None:
+    with pytest.raises(ValueError, match="tangent must be one of"):
+        indicators.dual_weighted_residuals(hyper, solver, np.zeros(6), tangent="secant")
+    with pytest.raises(ValueError, match="force_range"):
+        indicators.dual_weighted_residuals(hyper, solver, [12.0, 0, 0, 0, 0, 0])
+    other = rm.ReducedOrderModel(hyper.basis[:-3], *[getattr(hyper, n) for n in _REST])
+    with pytest.raises(ValueError, match="build the ROM on this solver"):
+        indicators.dual_weighted_residuals(other, solver, np.zeros(6))
+    assert np.array_equal(indicators.dual_weighted_residuals(hyper, solver, np.zeros(6)),
+                          np.zeros((1, 6)))  # fmt: skip
+
+
+_REST = ("force", "loads", "pose_map", "predictor", "cells", "weights", "force_range")

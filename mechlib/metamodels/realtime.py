@@ -5,7 +5,10 @@ Correction (:func:`corrected`, :func:`cross_validate_corrected`): the low-fideli
 the hyper-reduced ROM, :func:`mechlib.metamodels.families.wrap_model`) plus a Gaussian process
 fitted to what it misses on the full runs, ``poses − low(forces)`` — the additive
 low-fidelity-plus-discrepancy form of multi-fidelity Kriging (Kennedy and O'Hagan's model with a
-unit scale factor), fitted with this package's ``gp`` family.
+unit scale factor), fitted with this package's ``gp`` family. The other kind of correction,
+an error model on the low-fidelity model's own error indicators instead of the forces
+(:func:`indicator_correction`, :func:`indicator_curve`; ROMES), is compared with it.
+:func:`choose_teacher` picks the model to distil and the tolerance of its distillation.
 
 Distillation (:func:`distill`, :func:`distill_to`): the teacher evaluated on a scrambled Sobol'
 sample of its validated box (cheap: no FE), and a Legendre polynomial of total degree ``d``
@@ -18,6 +21,7 @@ matrix product.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable, Sequence
 
 import numpy as np
 from scipy.stats import qmc
@@ -111,6 +115,135 @@ def cross_validate_corrected(
     out = error_metrics(y, base + cv["predicted"])
     out["worst_pct"] = float(out["max_range_pct"].max())
     return out
+
+
+def indicator_correction(
+    features: object, misses: object, seed: int = 0
+) -> Callable[[np.ndarray], np.ndarray]:
+    """An error model on indicators: a Gaussian process from a low-fidelity model's error
+    indicators (e.g. its dual-weighted residuals,
+    :func:`mechlib.hexflex.rom.indicators.dual_weighted_residuals`) to its misses.
+
+    The ROMES form (Drohmann & Carlberg 2015): the inputs are what the low-fidelity model
+    computes about its own error, not the forces. Each indicator is divided by its largest
+    |value| on the training runs, and the ``gp`` family is fitted on those (its linear trend plus
+    a process); new indicators beyond the training ones are extrapolated, not refused.
+
+    Parameters
+    ----------
+    features : array_like (runs, k)
+        Indicators at the full runs, at least two runs; no column all zero.
+    misses : array_like (runs, outputs)
+        Full poses minus the low-fidelity model's there.
+    seed : int
+        Seed of the Gaussian process's optimiser restarts.
+
+    Returns
+    -------
+    callable
+        Indicators (n, k) → predicted misses (n, outputs).
+    """
+    x = check_matrix("features", features)
+    y = check_matrix("misses", misses, shape=(x.shape[0], None))
+    if x.shape[0] < 2:
+        raise ValueError(f"features must have at least 2 runs, got {x.shape[0]}")
+    scale = np.abs(x).max(axis=0)
+    if not scale.all():
+        raise ValueError(
+            "features must have no all-zero column, got all zeros in columns "
+            f"{np.flatnonzero(scale == 0).tolist()}"
+        )
+    gp = fit_surrogate("gp", x / scale, y, amplitude=1.0, seed=seed)
+
+    def predicted(new: np.ndarray) -> np.ndarray:
+        u = check_matrix("features", new, shape=(None, x.shape[1])) / scale
+        with threadpool_limits(limits=1, user_api="blas"):
+            return predict_array(gp, u)
+
+    return predicted
+
+
+def indicator_curve(
+    sizes: Sequence[int],
+    train: tuple[object, object, object],
+    held_out: tuple[object, object, object],
+    seed: int = 0,
+) -> np.ndarray:
+    """Largest error (% of range, worst component) on held-out runs of the low-fidelity model
+    corrected by :func:`indicator_correction` fitted on the first ``n`` training runs, per
+    ``n`` of ``sizes``.
+
+    Parameters
+    ----------
+    sizes : sequence of int
+        Training runs used, each 2 to the number of training runs.
+    train, held_out : tuple (low, features, poses)
+        Per run: the low-fidelity poses, the indicators and the full poses.
+    seed : int
+        As :func:`indicator_correction`.
+    """
+    low_t, feat_t, y_t = (check_matrix(n, a) for n, a in zip(_PARTS, train, strict=True))
+    low_v, feat_v, y_v = (check_matrix(n, a) for n, a in zip(_PARTS, held_out, strict=True))
+    out = []
+    for n in sizes:
+        n = check_int("sizes", n, low=2, high=len(y_t))
+        model = indicator_correction(feat_t[:n], y_t[:n] - low_t[:n], seed=seed)
+        out.append(error_metrics(y_v, low_v + model(feat_v))["max_range_pct"].max())
+    return np.array(out)
+
+
+_PARTS = ("low-fidelity poses", "features", "poses")
+
+
+def indicator_correlation(indicators: object, misses: object) -> np.ndarray:
+    """Pearson correlation of each indicator column with the miss of the same output column
+    (an indicator that estimates its own component's miss scores near 1).
+
+    Parameters
+    ----------
+    indicators, misses : array_like (runs, outputs)
+        At least three runs; no constant column.
+    """
+    a = check_matrix("indicators", indicators)
+    b = check_matrix("misses", misses, shape=a.shape)
+    if len(a) < 3:
+        raise ValueError(f"indicators must have at least 3 runs, got {len(a)}")
+    a, b = a - a.mean(axis=0), b - b.mean(axis=0)
+    norms = np.linalg.norm(a, axis=0) * np.linalg.norm(b, axis=0)
+    if not norms.all():
+        raise ValueError("indicators and misses must have no constant column")
+    return (a * b).sum(axis=0) / norms
+
+
+def choose_teacher(cv_pct: dict[str, float], goal_pct: float) -> tuple[str, float]:
+    """The model to distil, and how far its student may stray from it.
+
+    The teacher is the candidate with the smallest cross-validated error (chosen without
+    held-out runs). Its student may spend what that error leaves of the accuracy goal, so that
+    teacher and student together stay within it; if the teacher alone uses the goal up, a tenth
+    of its own error.
+
+    Parameters
+    ----------
+    cv_pct : dict
+        Candidate name → cross-validated worst error [% of range], at least one, finite ≥ 0.
+    goal_pct : float
+        Accuracy goal [% of range], in (0, 100].
+
+    Returns
+    -------
+    name : str
+    tol_pct : float
+        The distillation tolerance [% of range] for :func:`distill_to`.
+    """
+    goal_pct = check_float("goal_pct", goal_pct, low=0.0, high=100.0, low_open=True)
+    if not cv_pct:
+        raise ValueError("cv_pct must name at least one candidate, got none")
+    for name, e in cv_pct.items():
+        check_float(f"cv_pct[{name!r}]", e, low=0.0)
+    name = min(cv_pct, key=cv_pct.get)
+    room = goal_pct - cv_pct[name]
+    return name, room if room > 0 else 0.1 * cv_pct[name]
 
 
 def _sample(n_inputs: int, n: int, seed: int) -> np.ndarray:

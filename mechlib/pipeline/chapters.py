@@ -15,13 +15,14 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-#: Execution order: a chapter comes after every chapter it takes an input from.
+#: Execution order: a chapter comes after every chapter it takes an input from; of two chapters
+#: ready at once the longer comes first (the meta-model page before the family page).
 CHAPTERS: tuple[str, ...] = (
     "published_doe",
     "hexflex_model",
     "virtual_experiments",
-    "nonlinear_family",
     "nonlinear_metamodels",
+    "nonlinear_family",
     "fivebar_identification",
     "beyond_5r",
 )

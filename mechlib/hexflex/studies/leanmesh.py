@@ -259,3 +259,27 @@ def compare_runs(
                 nl_d[rows], lin_d[both][rows], nl_l[rows], lin_l[both][rows], ranges
             )
     return parts, both
+
+
+def meets_criteria(pose_pct: object, departure_pct: object, failed_on_lean_only: int = 0) -> bool:
+    """Whether a lean stand-in may replace the default mesh: every pose difference within
+    ``POSE_PCT`` % of its component's range, every departure difference within
+    ``DEPARTURE_PCT`` % of the departure (as :func:`compare` gives them, any shape), and no run
+    that failed on the lean mesh only.
+
+    Raises
+    ------
+    ValueError
+        On an empty or non-finite difference, or a negative count of failed runs.
+    """
+    for name, values in (("pose_pct", pose_pct), ("departure_pct", departure_pct)):
+        arr = np.asarray(values, dtype=float)
+        if arr.size == 0 or not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name} must be finite and not empty, got {values!r}")
+    if int(failed_on_lean_only) != failed_on_lean_only or failed_on_lean_only < 0:
+        raise ValueError(f"failed_on_lean_only must be a count ≥ 0, got {failed_on_lean_only!r}")
+    return bool(
+        np.max(pose_pct) <= POSE_PCT
+        and np.max(departure_pct) <= DEPARTURE_PCT
+        and failed_on_lean_only == 0
+    )

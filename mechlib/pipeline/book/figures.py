@@ -96,10 +96,11 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
         ),
         "rt-01": (
             "Largest error at ±1 N (worst pose component, % of its range) against the full "
-            "non-linear runs used for training: the plain Gaussian process, and the "
-            "reduced-order model corrected by a Gaussian process fitted to its misses; the "
+            "non-linear runs used for training: the plain Gaussian process, the "
+            "reduced-order model corrected by a Gaussian process of the forces fitted to its "
+            "misses, and corrected by an error model on its dual-weighted residuals; the "
             "uncorrected reduced-order model as a marker; dashed: the accuracy goal.",
-            "Log-log plot of error in percent against training runs, two lines and one marker, "
+            "Log-log plot of error in percent against training runs, three lines and one marker, "
             "with a horizontal dashed goal line.",
         ),
     },
