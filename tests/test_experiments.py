@@ -214,7 +214,7 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
 
 
-def test_linearity_sweep_on_a_small_q2_model() -> None:
+def test_linearity_sweep_on_a_small_q2_model(tmp_path: Path) -> None:
     model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
@@ -236,6 +236,18 @@ def test_linearity_sweep_on_a_small_q2_model() -> None:
     # first-order departure would give 0, a third-order one 2)
     exponent = linearity.linear_range(amps, sweep["rel_pct"])["exponent"]
     np.testing.assert_allclose(exponent[:, :3], 1.0, atol=0.05)
+    # the same sweep as cached FE experiments: identical poses and solver statistics, and a
+    # second call with the cache solves nothing (its tasks are read)
+    cases = np.r_[amps, 1.5]  # 1.5 N: two load steps, a group of its own
+    direct = linearity.linearity_sweep(solver, f, cases)
+    for cache in (None, tmp_path):
+        runs = linearity.sweep_runs(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
+                                    cache_dir=cache)  # fmt: skip
+        for key, value in direct.items():
+            np.testing.assert_array_equal(runs[key], value, err_msg=key)
+    assert len(list(tmp_path.glob("*.npy"))) == len(cases) + 1  # + the compliance's task
+    with pytest.raises(ValueError, match="direction must have a non-zero component"):
+        linearity.sweep_runs(SPEC, np.zeros(6), amps)
     with pytest.raises(ValueError, match="direction must have a non-zero component"):
         linearity.linearity_sweep(model, np.zeros(6), amps)
     with pytest.raises(ValueError, match=r"amplitudes must lie in \(0, 50\] N"):

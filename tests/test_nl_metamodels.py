@@ -114,3 +114,19 @@ def test_inverse_round_trip_applies_the_forces_and_leaves_unsolved_runs_out() ->
     assert np.allclose(out["error_pct"], 100 * 0.01 / span)
     with pytest.raises(ValueError, match="span must be positive"):
         study.inverse_round_trip(exact, _cubic_truth(x), truth_missing_one, np.zeros(6))
+
+
+def test_the_truth_is_given_rounded_forces_that_round_off_does_not_move() -> None:
+    x = np.random.default_rng(3).uniform(-0.5, 0.5, (4, 6))
+    given = []
+
+    def truth(forces):
+        given.append(forces.copy())
+        return np.arange(len(forces)), _cubic_truth(forces)
+
+    for wobble in (0.0, 3e-14):  # another processor's last digits in the model
+        model = families.wrap_model("cubic", lambda f, w=wobble: _cubic_truth(f) * (1 + w), 1.0)
+        out = study.inverse_round_trip(model, _cubic_truth(x), truth, np.ones(6))
+        assert np.array_equal(out["forces"], given[-1])
+    assert np.array_equal(given[0], np.round(given[0], study.FORCE_DECIMALS))
+    assert np.array_equal(given[0], given[1]) and np.abs(given[0] - x).max() < 1e-8

@@ -1,8 +1,10 @@
-"""Real-time models: the ROM-plus-correction form and the distilled polynomial."""
+"""Real-time models: the corrections of a low-fidelity model (of the forces, on indicators) and
+the distilled polynomial."""
 
 import numpy as np
 import pytest
 
+from mechlib.metamodels import correction as corr
 from mechlib.metamodels import realtime as rt
 from mechlib.metamodels.families import predict, wrap_model
 from mechlib.metamodels.scoring import latency_us, score
@@ -44,11 +46,20 @@ def test_a_correction_learns_what_the_low_fidelity_model_misses() -> None:
     low = wrap_model("linear part", lambda f: f @ S.T, amplitude=1.0)
     x = 2 * RNG.random((64, 6)) - 1
     held = 2 * RNG.random((200, 6)) - 1
-    fixed = rt.corrected(low, x, _truth(x), seed=1)
+    fixed = corr.corrected(low, x, _truth(x), seed=1)
     before, after = score(low, held, _truth(held)), score(fixed, held, _truth(held))
     assert after["worst_pct"] < before["worst_pct"] / 2
-    cv = rt.cross_validate_corrected(low, x, _truth(x), folds=4, seed=1)
+    cv = corr.cross_validate_corrected(low, x, _truth(x), folds=4, seed=1)
     assert 0 < cv["worst_pct"] < before["worst_pct"]
+    # the curve from low-fidelity poses computed once: the same fits, the same numbers
+    sizes = [16, 64]
+    curve = corr.corrected_curve(
+        sizes, (x @ S.T, x, _truth(x)), (held @ S.T, held, _truth(held)), amplitude=1.0, seed=1
+    )
+    each = [score(corr.corrected(low, x[:n], _truth(x[:n]), seed=1), held, _truth(held))
+            for n in sizes]  # fmt: skip
+    np.testing.assert_allclose(curve, [e["worst_pct"] for e in each], rtol=1e-12)
+    assert curve[1] == pytest.approx(after["worst_pct"], rel=1e-12)
 
 
 def test_bad_distillation_settings_are_refused_by_name() -> None:
@@ -69,11 +80,11 @@ def test_an_error_model_on_informative_indicators_learns_the_miss() -> None:
     miss_t, miss_v = _truth(x) - low_t, _truth(held) - low_v
     # indicators that estimate the miss roughly (scaled and bent), as a residual does
     noisy = 0.5 * miss_v + 0.1 * miss_v**2
-    informative = rt.indicator_curve(
+    informative = corr.indicator_curve(
         [8, 64], (low_t, 0.5 * miss_t + 0.1 * miss_t**2, _truth(x)),
         (low_v, noisy, _truth(held)), seed=1,
     )  # fmt: skip
-    unrelated = rt.indicator_curve(
+    unrelated = corr.indicator_curve(
         [64], (low_t, RNG.normal(size=(64, 6)), _truth(x)),
         (low_v, RNG.normal(size=(300, 6)), _truth(held)), seed=1,
     )  # fmt: skip
@@ -81,7 +92,7 @@ def test_an_error_model_on_informative_indicators_learns_the_miss() -> None:
     assert informative[1] < plain / 20 and informative[1] < informative[0]
     assert unrelated[0] > plain / 2  # noise as indicators: no better than no correction
     # beyond the training indicators' range the model extrapolates (not refused)
-    model = rt.indicator_correction(np.c_[x[:, :1]], miss_t[:, :2], seed=1)
+    model = corr.indicator_correction(np.c_[x[:, :1]], miss_t[:, :2], seed=1)
     assert model(np.array([[3.0]])).shape == (1, 2)
 
 
@@ -89,10 +100,10 @@ def test_indicator_correlation_is_pearsons_per_column() -> None:
     a, b = RNG.normal(size=(40, 3)), RNG.normal(size=(40, 3))
     b[:, 0] = 2 * a[:, 0] + 1
     expected = [np.corrcoef(a[:, j], b[:, j])[0, 1] for j in range(3)]
-    np.testing.assert_allclose(rt.indicator_correlation(a, b), expected, rtol=1e-12)
-    assert rt.indicator_correlation(a, b)[0] == pytest.approx(1.0)
+    np.testing.assert_allclose(corr.indicator_correlation(a, b), expected, rtol=1e-12)
+    assert corr.indicator_correlation(a, b)[0] == pytest.approx(1.0)
     with pytest.raises(ValueError, match="constant column"):
-        rt.indicator_correlation(np.ones((5, 2)), RNG.normal(size=(5, 2)))
+        corr.indicator_correlation(np.ones((5, 2)), RNG.normal(size=(5, 2)))
 
 
 def test_the_teacher_is_the_smallest_cv_error_and_leaves_its_student_the_rest() -> None:
@@ -109,9 +120,9 @@ def test_the_teacher_is_the_smallest_cv_error_and_leaves_its_student_the_rest() 
 
 def test_bad_indicator_input_is_refused_by_name() -> None:
     with pytest.raises(ValueError, match="all-zero column"):
-        rt.indicator_correction(np.c_[np.ones(5), np.zeros(5)], np.ones((5, 1)))
+        corr.indicator_correction(np.c_[np.ones(5), np.zeros(5)], np.ones((5, 1)))
     with pytest.raises(ValueError, match="at least 2 runs"):
-        rt.indicator_correction(np.ones((1, 2)), np.ones((1, 1)))
+        corr.indicator_correction(np.ones((1, 2)), np.ones((1, 1)))
     with pytest.raises(ValueError, match="sizes"):
         z = (np.zeros((4, 1)), np.ones((4, 1)), np.ones((4, 1)))
-        rt.indicator_curve([8], z, z)
+        corr.indicator_curve([8], z, z)

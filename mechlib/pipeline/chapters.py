@@ -15,14 +15,15 @@ import sys
 from collections.abc import Iterable
 from pathlib import Path
 
-#: Execution order: a chapter comes after every chapter it takes an input from; of two chapters
-#: ready at once the longer comes first (the meta-model page before the family page).
+#: Execution order: a chapter comes after every chapter it takes an input from; the longest chain
+#: (the model page, the DOE chapter, the meta-model page) first, the chapters that feed no other
+#: after it (a build with fewer workers than ready chapters starts them in this order).
 CHAPTERS: tuple[str, ...] = (
-    "published_doe",
     "hexflex_model",
     "virtual_experiments",
     "nonlinear_metamodels",
     "nonlinear_family",
+    "published_doe",
     "fivebar_identification",
     "beyond_5r",
 )

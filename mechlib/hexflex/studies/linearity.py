@@ -1,17 +1,28 @@
 """How far the linear HexFlex model holds: linear against non-linear poses along a load ray.
 
-:func:`linearity_sweep` solves one force direction at several amplitudes with both models;
+:func:`linearity_sweep` solves one force direction at several amplitudes with both models
+(:func:`sweep_runs`: the same as cached FE experiments);
 :func:`linear_range` reads off, per pose component, how fast the linear model's error grows with
 the load and where it passes a budget; :func:`crossing_labels` words those crossings for a table.
 """
 
 from __future__ import annotations
 
+import functools
+import tempfile
+from pathlib import Path
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.params import check_increasing, check_int, check_matrix
+
+if TYPE_CHECKING:
+    import concurrent.futures as cf
+
+    from mechlib.hexflex.campaign.experiments import ModelSpec
 
 #: The linear model's error budget of the chapter's sweep [%]: where the linear model stops
 #: being "accurate" (the largest pointwise error of a pose component).
@@ -43,6 +54,75 @@ def linearity_sweep(
         ``iterations`` (m,) the corrections (back-substitutions) and ``factorisations`` (m,) the
         tangent factorisations spent.
     """
+    amps, forces, case_steps = _cases(direction, amplitudes, steps)
+    model = solver.model
+    lin = model.poses(forces)
+    nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
+    facts = np.zeros(len(amps), dtype=int)
+    for i, (f, n) in enumerate(zip(forces, case_steps, strict=True)):
+        nonlin[i], stats = solver.pose(f, steps=int(n))
+        iters[i], facts[i] = sum(stats.iterations), sum(stats.factorisations)
+    return _sweep(amps, lin, nonlin, iters, facts)
+
+
+def sweep_runs(
+    spec: ModelSpec,
+    direction: object,
+    amplitudes: object,
+    steps: int = 1,
+    *,
+    executor: cf.Executor | None = None,
+    cache_dir: Path | None = None,
+) -> dict[str, np.ndarray]:
+    """:func:`linearity_sweep` of ``spec``'s model as FE experiments: each case one non-linear
+    run of :func:`mechlib.hexflex.campaign.experiments.run_experiments` (cached, so a build
+    seeded with stored results solves none), the linear poses from the cached compliance.
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        The model of the non-linear runs.
+    direction, amplitudes, steps
+        As :func:`linearity_sweep`.
+    executor : concurrent.futures.Executor, optional
+        Where the runs are solved; default in-process.
+    cache_dir : Path, optional
+        FE cache; without one the runs go through a temporary cache (one solve a case).
+
+    Returns
+    -------
+    dict
+        As :func:`linearity_sweep` (the same poses, corrections and factorisations).
+
+    Raises
+    ------
+    mechlib.hexflex.campaign.experiments.ExperimentError
+        When a case does not converge (named).
+    """
+    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.hexflex.studies.departure import linear_poses_for
+
+    amps, forces, case_steps = _cases(direction, amplitudes, steps)
+    with tempfile.TemporaryDirectory() as scratch:
+        cache = Path(scratch) if cache_dir is None else Path(cache_dir)
+        nonlin, spent = np.zeros_like(forces), np.zeros((len(amps), len(ex.SOLVE_STATS)))
+        for n in np.unique(case_steps):
+            rows = np.flatnonzero(case_steps == n)
+            run = functools.partial(
+                ex.run_experiments, spec, forces[rows], kind="nonlinear", steps=int(n),
+                executor=executor, cache_dir=cache, progress=False,
+            )  # fmt: skip
+            nonlin[rows], spent[rows] = run(), run(pose="stats")  # the second: from the cache
+        lin = linear_poses_for(spec, forces, cache)
+    stat = {name: spent[:, k].astype(int) for k, name in enumerate(ex.SOLVE_STATS)}
+    return _sweep(amps, lin, nonlin, stat["corrections"], stat["factorisations"])
+
+
+def _cases(
+    direction: object, amplitudes: object, steps: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Checked amplitudes (m,) [N], the forces (m, 6) [N] along ``direction`` scaled to them, and
+    each case's load steps (``steps`` per N, at least one)."""
     d = check_matrix("direction", np.atleast_2d(np.asarray(direction, dtype=float)), shape=(1, 6))[
         0
     ]
@@ -53,13 +133,11 @@ def linearity_sweep(
     if amps.ndim != 1 or amps.size == 0 or np.any(~(amps > 0)) or np.any(amps > MAX_FORCE_N):
         raise ValueError(f"amplitudes must lie in (0, {MAX_FORCE_N:g}] N, got {amps.tolist()}")
     steps = check_int("steps", steps, low=1, high=100)
-    model = solver.model
-    lin = model.poses(amps[:, None] * d)
-    nonlin, iters = np.zeros_like(lin), np.zeros(len(amps), dtype=int)
-    facts = np.zeros(len(amps), dtype=int)
-    for i, a in enumerate(amps):
-        nonlin[i], stats = solver.pose(a * d, steps=max(1, int(np.ceil(steps * a))))
-        iters[i], facts[i] = sum(stats.iterations), sum(stats.factorisations)
+    case_steps = np.maximum(1, np.ceil(steps * amps)).astype(int)
+    return amps, amps[:, None] * d, case_steps
+
+
+def _sweep(amps, lin, nonlin, iters, facts) -> dict[str, np.ndarray]:
     return {
         "amplitude": amps,
         "linear": lin,
