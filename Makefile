@@ -21,6 +21,7 @@ RERUN       := $(BUILD)/rerun
 CHAPTERS    := mechlib/pipeline/chapters.py
 NB_NAMES    := $(shell $(PYTHON_BOOT) $(CHAPTERS) order)
 NB_EDGES    := $(shell $(PYTHON_BOOT) $(CHAPTERS) edges)
+NB_DEFERRED := $(shell $(PYTHON_BOOT) $(CHAPTERS) deferred)
 # what the notebooks import: the science wing, mechlib minus the build wing (mechlib/pipeline/),
 # so a change in the build wing rebuilds the book without re-executing the notebooks
 MECHLIB_SRC := $(filter-out mechlib/pipeline/%,$(shell find mechlib -name '*.py' 2>/dev/null))
@@ -87,11 +88,11 @@ $(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard 
 $(foreach e,$(NB_EDGES),$(eval $(BUILD)/executed/$(word 1,$(subst :, ,$(e))).ipynb: \
   $(BUILD)/executed/$(word 2,$(subst :, ,$(e))).ipynb))
 
-# scheduling: make starts the ready notebook that comes first in its list, so without this the
-# chapters that feed no other (the published design's, the 5R ones) would take the free core
-# while the longest chain, the model page → the DOE chapter → the meta-model page, waits
-$(patsubst %,$(BUILD)/executed/%.ipynb,published_doe fivebar_identification beyond_5r): | \
-  $(BUILD)/executed/virtual_experiments.ipynb
+# scheduling only (chapters.DEFERRED): make starts the ready notebook that comes first in its
+# list, so the quick chapters that feed no other wait (order-only) for the DOE chapter, and the
+# longest chain, the model page → the DOE chapter → the meta-model page, goes first
+$(foreach e,$(NB_DEFERRED),$(eval $(BUILD)/executed/$(word 1,$(subst :, ,$(e))).ipynb: | \
+  $(BUILD)/executed/$(word 2,$(subst :, ,$(e))).ipynb))
 
 notebooks: $(EXECUTED)
 

@@ -214,7 +214,9 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
     assert out["crossing"][3] == 0.1 and out["below_sweep"][3]
 
 
-def test_linearity_sweep_on_a_small_q2_model(tmp_path: Path) -> None:
+def test_linearity_sweep_on_a_small_q2_model(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
@@ -246,6 +248,14 @@ def test_linearity_sweep_on_a_small_q2_model(tmp_path: Path) -> None:
         for key, value in direct.items():
             np.testing.assert_array_equal(runs[key], value, err_msg=key)
     assert len(list(tmp_path.glob("*.npy"))) == len(cases) + 1  # + the compliance's task
+
+    def no_solve(*args: object) -> None:
+        raise AssertionError("a cached sweep solved a case")
+
+    monkeypatch.setattr(ex, "_task", no_solve)
+    again = linearity.sweep_runs(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
+                                 cache_dir=tmp_path)  # fmt: skip
+    np.testing.assert_array_equal(again["nonlinear"], direct["nonlinear"])
     with pytest.raises(ValueError, match="direction must have a non-zero component"):
         linearity.sweep_runs(SPEC, np.zeros(6), amps)
     with pytest.raises(ValueError, match="direction must have a non-zero component"):

@@ -214,3 +214,17 @@ def test_the_criteria_hold_only_when_every_difference_is_within_its_limit() -> N
             leanmesh.meets_criteria(bad, ok_dep)
     with pytest.raises(ValueError, match="failed_on_lean_only"):
         leanmesh.meets_criteria(ok_pose, ok_dep, failed_on_lean_only=-1)
+    for bad_count in (True, 0.5):
+        with pytest.raises(TypeError, match="failed_on_lean_only must be an integer"):
+            leanmesh.meets_criteria(ok_pose, ok_dep, failed_on_lean_only=bad_count)
+
+
+def test_runs_failed_on_the_lean_mesh_only_are_told_apart() -> None:
+    class Failed:
+        def __init__(self, index: int) -> None:
+            self.index = index
+
+    failed = [("lean mesh", Failed(3)), ("chapter's mesh", Failed(3)), ("lean mesh", Failed(7))]
+    failed += [("chapter's mesh", Failed(1)), ("lean mesh", Failed(5))]
+    assert leanmesh.failed_on_lean_only(failed) == [5, 7]
+    assert leanmesh.failed_on_lean_only(iter(failed), lean="chapter's mesh") == [1]

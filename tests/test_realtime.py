@@ -91,9 +91,10 @@ def test_an_error_model_on_informative_indicators_learns_the_miss() -> None:
     plain = 100 * (np.abs(miss_v).max(axis=0) / np.abs(_truth(held)).max(axis=0)).max()
     assert informative[1] < plain / 20 and informative[1] < informative[0]
     assert unrelated[0] > plain / 2  # noise as indicators: no better than no correction
-    # beyond the training indicators' range the model extrapolates (not refused)
-    model = corr.indicator_correction(np.c_[x[:, :1]], miss_t[:, :2], seed=1)
-    assert model(np.array([[3.0]])).shape == (1, 2)
+    # beyond the training indicators' range the model extrapolates (not refused): a miss
+    # linear in the indicator is carried on by the process's linear trend
+    model = corr.indicator_correction(x[:, :1], np.c_[2 * x[:, 0], -x[:, 0]], seed=1)
+    np.testing.assert_allclose(model(np.array([[3.0]])), [[6.0, -3.0]], rtol=1e-3)
 
 
 def test_indicator_correlation_is_pearsons_per_column() -> None:
@@ -110,6 +111,8 @@ def test_the_teacher_is_the_smallest_cv_error_and_leaves_its_student_the_rest() 
     assert rt.choose_teacher({"a": 0.2, "b": 0.1}, 0.25) == ("b", pytest.approx(0.15))
     # a teacher beyond the goal: its student may add a tenth of the teacher's own error
     assert rt.choose_teacher({"a": 0.6, "b": 0.4}, 0.25) == ("b", pytest.approx(0.04))
+    # just under the goal the student still gets a tenth (no jump to a near-zero tolerance)
+    assert rt.choose_teacher({"a": 0.24}, 0.25) == ("a", pytest.approx(0.024))
     with pytest.raises(ValueError, match="at least one candidate"):
         rt.choose_teacher({}, 0.25)
     with pytest.raises(ValueError, match="goal_pct"):

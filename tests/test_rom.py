@@ -220,8 +220,8 @@ def test_one_exact_newton_correction_from_the_rom_state_nearly_reaches_the_full_
     # a Newton step from the ROM's state: the error squared (quadratic convergence), measured
     # 7e-3 of the ROM's here; its sign flipped it would double the error
     assert (np.abs(rom + exact - full).max(axis=0) / span).max() < 0.02 * before
-    # through K₀ the same residual gives a rougher estimate, still of the error's size and sign
-    assert (np.abs(rom + linear - full).max(axis=0) / span).max() < before
+    # through K₀ the same residual gives a rougher estimate (measured 0.64 of the ROM's error)
+    assert (np.abs(rom + linear - full).max(axis=0) / span).max() < 0.8 * before
     # the linear indicator is −P K₀⁻¹ r, computed here without the adjoint
     model, v = solver.model, hyper.basis
     q = hyper.coordinates(f[0])[0]

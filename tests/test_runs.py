@@ -239,3 +239,10 @@ def test_an_input_from_a_later_chapter_is_refused(monkeypatch: pytest.MonkeyPatc
     monkeypatch.setitem(chapters.CHAPTER_INPUTS, "hexflex_model", {"g": ("beyond_5r", "k")})
     with pytest.raises(ValueError, match="'hexflex_model' comes from 'beyond_5r'"):
         chapters.check_order()
+
+
+def test_a_chapter_deferred_after_a_later_one_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    chapters.check_order()  # the declared deferrals hold
+    monkeypatch.setitem(chapters.DEFERRED, "hexflex_model", "beyond_5r")
+    with pytest.raises(ValueError, match="deferred chapter 'hexflex_model' must come after"):
+        chapters.check_order()

@@ -113,8 +113,8 @@ def corrected_curve(
 
     The fits are those of ``corrected`` on the same runs, except that the low-fidelity poses come
     from one batch: a batched model (the ROM) can round them differently in the last digits,
-    and that can move a correction's likelihood optimum (measured on the meta-model page at 128
-    runs: 0.397 against 0.457 %, the two optima seen between processors too).
+    and that can move a correction's likelihood optimum (seen on the meta-model page, as
+    between processors).
 
     Parameters
     ----------
@@ -126,9 +126,14 @@ def corrected_curve(
         The low-fidelity model's validated range [N] (that of the correction).
     seed : int
         As :func:`corrected`.
+
+    Returns
+    -------
+    ndarray (len(sizes),)
+        Worst-component largest error [% of range] per size.
     """
-    low_t, x_t, y_t = (check_matrix(n, a) for n, a in zip(_FORCE_PARTS, train, strict=True))
-    low_v, x_v, y_v = (check_matrix(n, a) for n, a in zip(_FORCE_PARTS, held_out, strict=True))
+    low_t, x_t, y_t = _runs("train", train, "forces")
+    low_v, x_v, y_v = _runs("held_out", held_out, "forces")
     out = []
     for n in sizes:
         n = check_int("sizes", n, low=2, high=len(y_t))
@@ -139,20 +144,34 @@ def corrected_curve(
     return np.array(out)
 
 
-_FORCE_PARTS = ("low-fidelity poses", "forces", "poses")
+def _runs(name: str, parts: tuple[object, object, object], inputs: str) -> list[np.ndarray]:
+    """``(low, inputs, poses)`` of one set of runs as float matrices with one row a run."""
+    if len(parts) != 3:
+        raise ValueError(f"{name} must be (low-fidelity poses, {inputs}, poses), got {len(parts)}")
+    low, x, y = (
+        check_matrix(f"{name} {what}", a)
+        for what, a in zip(("low-fidelity poses", inputs, "poses"), parts, strict=True)
+    )
+    if not len(low) == len(x) == len(y) or low.shape[1] != y.shape[1]:
+        raise ValueError(
+            f"{name}: low-fidelity poses {low.shape}, {inputs} {x.shape} and poses {y.shape} "
+            "must have one row a run and the poses the same columns"
+        )
+    return [low, x, y]
 
 
 def indicator_correction(
-    features: object, misses: object, seed: int = 0
+    features: object, misses: object, seed: int = 0, scale: object | None = None
 ) -> Callable[[np.ndarray], np.ndarray]:
     """An error model on indicators: a Gaussian process from a low-fidelity model's error
     indicators (e.g. its dual-weighted residuals,
     :func:`mechlib.hexflex.rom.indicators.dual_weighted_residuals`) to its misses.
 
     The ROMES form (Drohmann & Carlberg 2015): the inputs are what the low-fidelity model
-    computes about its own error, not the forces. Each indicator is divided by its largest
-    |value| on the training runs, and the ``gp`` family is fitted on those (its linear trend plus
-    a process); new indicators beyond the training ones are extrapolated, not refused.
+    computes about its own error, not the forces. Each indicator is divided by ``scale`` (by
+    default its largest |value| on the training runs), and the ``gp`` family is fitted on those
+    (its linear trend plus a process); new indicators beyond the training ones are extrapolated,
+    not refused.
 
     Parameters
     ----------
@@ -162,6 +181,9 @@ def indicator_correction(
         Full poses minus the low-fidelity model's there.
     seed : int
         Seed of the Gaussian process's optimiser restarts.
+    scale : array_like (k,), optional
+        Positive divisor of each indicator, at least its largest |value| on these runs (e.g.
+        over a larger pool of runs: indicators need no full run).
 
     Returns
     -------
@@ -172,12 +194,21 @@ def indicator_correction(
     y = check_matrix("misses", misses, shape=(x.shape[0], None))
     if x.shape[0] < 2:
         raise ValueError(f"features must have at least 2 runs, got {x.shape[0]}")
-    scale = np.abs(x).max(axis=0)
-    if not scale.all():
+    largest = np.abs(x).max(axis=0)
+    if not largest.all():
         raise ValueError(
             "features must have no all-zero column, got all zeros in columns "
-            f"{np.flatnonzero(scale == 0).tolist()}"
+            f"{np.flatnonzero(largest == 0).tolist()}"
         )
+    if scale is None:
+        scale = largest
+    else:
+        scale = check_matrix("scale", np.atleast_2d(scale), shape=(1, x.shape[1]))[0]
+        if np.any(scale < largest):
+            raise ValueError(
+                f"scale must be at least each feature's largest |value| {largest.tolist()}, "
+                f"got {scale.tolist()}"
+            )
     gp = fit_surrogate("gp", x / scale, y, amplitude=1.0, seed=seed)
 
     def predicted(new: np.ndarray) -> np.ndarray:
@@ -206,18 +237,27 @@ def indicator_curve(
         Per run: the low-fidelity poses, the indicators and the full poses.
     seed : int
         As :func:`indicator_correction`.
+
+    Returns
+    -------
+    ndarray (len(sizes),)
+        Worst-component largest error [% of range] per size. Every fit divides the indicators
+        by their largest |value| over all training runs (the same inputs at every size).
     """
-    low_t, feat_t, y_t = (check_matrix(n, a) for n, a in zip(_PARTS, train, strict=True))
-    low_v, feat_v, y_v = (check_matrix(n, a) for n, a in zip(_PARTS, held_out, strict=True))
+    low_t, feat_t, y_t = _runs("train", train, "features")
+    low_v, feat_v, y_v = _runs("held_out", held_out, "features")
+    if feat_v.shape[1] != feat_t.shape[1]:
+        raise ValueError(
+            f"held_out features must have the training's {feat_t.shape[1]} columns, got "
+            f"{feat_v.shape[1]}"
+        )
+    scale = np.abs(feat_t).max(axis=0)
     out = []
     for n in sizes:
         n = check_int("sizes", n, low=2, high=len(y_t))
-        model = indicator_correction(feat_t[:n], y_t[:n] - low_t[:n], seed=seed)
+        model = indicator_correction(feat_t[:n], y_t[:n] - low_t[:n], seed=seed, scale=scale)
         out.append(error_metrics(y_v, low_v + model(feat_v))["max_range_pct"].max())
     return np.array(out)
-
-
-_PARTS = ("low-fidelity poses", "features", "poses")
 
 
 def indicator_correlation(indicators: object, misses: object) -> np.ndarray:
@@ -228,6 +268,11 @@ def indicator_correlation(indicators: object, misses: object) -> np.ndarray:
     ----------
     indicators, misses : array_like (runs, outputs)
         At least three runs; no constant column.
+
+    Returns
+    -------
+    ndarray (outputs,)
+        Correlations in [-1, 1].
     """
     a = check_matrix("indicators", indicators)
     b = check_matrix("misses", misses, shape=a.shape)

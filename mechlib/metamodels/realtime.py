@@ -44,8 +44,8 @@ def choose_teacher(cv_pct: dict[str, float], goal_pct: float) -> tuple[str, floa
 
     The teacher is the candidate with the smallest cross-validated error (chosen without
     held-out runs). Its student may spend what that error leaves of the accuracy goal, so that
-    teacher and student together stay within it; if the teacher alone uses the goal up, a tenth
-    of its own error.
+    teacher and student together stay within it, but at least a tenth of the teacher's own error
+    (a teacher at or beyond the goal is still distilled, to within a tenth of its error).
 
     Parameters
     ----------
@@ -58,7 +58,8 @@ def choose_teacher(cv_pct: dict[str, float], goal_pct: float) -> tuple[str, floa
     -------
     name : str
     tol_pct : float
-        The distillation tolerance [% of range] for :func:`distill_to`.
+        The distillation tolerance [% of range] for :func:`distill_to`:
+        ``max(goal_pct - cv, cv / 10)``, ``cv`` the teacher's error.
     """
     goal_pct = check_float("goal_pct", goal_pct, low=0.0, high=100.0, low_open=True)
     if not cv_pct:
@@ -66,8 +67,7 @@ def choose_teacher(cv_pct: dict[str, float], goal_pct: float) -> tuple[str, floa
     for name, e in cv_pct.items():
         check_float(f"cv_pct[{name!r}]", e, low=0.0)
     name = min(cv_pct, key=cv_pct.get)
-    room = goal_pct - cv_pct[name]
-    return name, room if room > 0 else 0.1 * cv_pct[name]
+    return name, max(goal_pct - cv_pct[name], 0.1 * cv_pct[name])
 
 
 def _sample(n_inputs: int, n: int, seed: int) -> np.ndarray:

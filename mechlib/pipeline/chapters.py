@@ -27,6 +27,15 @@ CHAPTERS: tuple[str, ...] = (
     "fivebar_identification",
     "beyond_5r",
 )
+#: Scheduling only (no input passes): chapter -> the chapter it starts after when make has fewer
+#: job slots than ready chapters. make starts the ready chapter that comes first in its list, so
+#: the quick chapters that feed no other would otherwise take a free slot while the longest chain
+#: (the model page, the DOE chapter, the meta-model page) waits.
+DEFERRED: dict[str, str] = {
+    "published_doe": "virtual_experiments",
+    "fivebar_identification": "virtual_experiments",
+    "beyond_5r": "virtual_experiments",
+}
 #: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
 #: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it
 #: itself); a key ending in ``.*`` passes every value under that prefix, as a mapping by the rest
@@ -67,7 +76,14 @@ def in_order(notebooks: Iterable[Path]) -> list[Path]:
 
 
 def check_order() -> None:
-    """Raise ``ValueError`` unless every input comes from a chapter that executes earlier."""
+    """Raise ``ValueError`` unless every input comes from a chapter that executes earlier (and
+    every deferred chapter waits for an earlier one)."""
+    for chapter, after in DEFERRED.items():
+        if after not in CHAPTERS or chapter not in CHAPTERS[CHAPTERS.index(after) + 1 :]:
+            raise ValueError(
+                f"deferred chapter {chapter!r} must come after {after!r} in CHAPTERS: "
+                f"{list(CHAPTERS)}"
+            )
     for chapter, inputs in CHAPTER_INPUTS.items():
         for name, (up, _) in inputs.items():
             if chapter not in CHAPTERS or up not in CHAPTERS[: CHAPTERS.index(chapter)]:
@@ -78,14 +94,17 @@ def check_order() -> None:
 
 
 def main(argv: list[str]) -> int:
-    """``order``: the chapters one per word; ``edges``: ``chapter:upstream`` words (for make)."""
+    """``order``: the chapters one per word; ``edges``: ``chapter:upstream`` words (for make);
+    ``deferred``: ``chapter:after`` words of :data:`DEFERRED`."""
     check_order()
     if argv == ["order"]:
         print(" ".join(CHAPTERS))
     elif argv == ["edges"]:
         print(" ".join(f"{c}:{u}" for c in CHAPTERS for u in upstream(c)))
+    elif argv == ["deferred"]:
+        print(" ".join(f"{c}:{a}" for c, a in DEFERRED.items()))
     else:
-        print("usage: chapters.py order|edges", file=sys.stderr)
+        print("usage: chapters.py order|edges|deferred", file=sys.stderr)
         return 2
     return 0
 

@@ -1,11 +1,12 @@
 """Error indicators of the reduced-order model, from the full model's residual at its solution.
 
-The ROM's Galerkin equilibrium leaves the full residual ``r = f(V q) − L F`` orthogonal to its
-basis ``V`` but not zero; what is left estimates the ROM's error. To first order the full
-displacement misses ``V q`` by ``−K⁻¹ r`` (one Newton correction), so the pose misses by the
-dual-weighted residual (DWR) ``δ = −P K⁻¹ r``, ``P`` the model's linear pose fit: the
-indicators of ROM error models (ROMES: Drohmann & Carlberg 2015; for non-linear problems with
-sampled residuals, Freno & Carlberg 2019) are of this kind. Two tangents ``K``:
+The ROM's Galerkin equilibrium (its equations are the full ones projected on its basis ``V``)
+leaves the full residual ``r = f(V q) − L F`` orthogonal to ``V`` — up to the hyper-reduction's
+approximation of the internal force — but not zero; what is left estimates the ROM's error.
+To first order the full displacement misses ``V q`` by ``−K⁻¹ r`` (one Newton correction), so
+the pose misses by the dual-weighted residual (DWR) ``δ = −P K⁻¹ r``, ``P`` the model's linear
+pose fit: the indicators of ROM error models (ROMES: Drohmann & Carlberg 2015; for non-linear
+problems with sampled residuals, Freno & Carlberg 2019) are of this kind. Two tangents ``K``:
 
 * ``"linear"``: the linear stiffness ``K₀`` — its adjoint ``K₀⁻¹ Pᵀ`` is six back-substitutions
   done once, after which an indicator costs one full internal-force evaluation;
@@ -29,8 +30,21 @@ TANGENTS: tuple[str, ...] = ("linear", "exact")
 
 
 def pose_adjoint(solver: NonlinearSolver) -> np.ndarray:
-    """``K₀⁻¹ Pᵀ`` (n_dofs, 6): the linear model's response [mm] to the six pose components'
-    fit rows applied as loads (``P u`` = the fitted pose of ``u``; ``K₀`` symmetric)."""
+    """The adjoint of the pose: ``K₀⁻¹ Pᵀ``, so that ``P K₀⁻¹ r = r @ K₀⁻¹ Pᵀ`` (``K₀``
+    symmetric) for any residual ``r``.
+
+    Parameters
+    ----------
+    solver : NonlinearSolver
+        The full model (its factorised linear stiffness ``K₀`` and pose fit ``P``: ``P u`` is
+        the fitted stage pose [µm, µrad] of the displacements ``u`` [mm]).
+
+    Returns
+    -------
+    ndarray (n_dofs, 6)
+        The linear model's responses [mm] to the six rows of ``P`` applied as loads (six
+        back-substitutions).
+    """
     model = solver.model
     rows = np.zeros((model.n_dofs, 6))
     rows[model.fe.stage_idx, :] = model.fe.fit.T

@@ -12,7 +12,7 @@ non-linear campaigns.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import replace
 from pathlib import Path
 
@@ -23,7 +23,7 @@ from mechlib.hexflex import identify as ident
 from mechlib.hexflex.campaign import compliance as cc
 from mechlib.hexflex.campaign.experiments import ModelSpec
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
-from mechlib.params import check_float, check_matrix
+from mechlib.params import check_float, check_int, check_matrix
 
 #: Poses within this % of each component's range, departures within this % of themselves.
 POSE_PCT, DEPARTURE_PCT = 0.1, 1.0
@@ -262,24 +262,56 @@ def compare_runs(
 
 
 def meets_criteria(pose_pct: object, departure_pct: object, failed_on_lean_only: int = 0) -> bool:
-    """Whether a lean stand-in may replace the default mesh: every pose difference within
-    ``POSE_PCT`` % of its component's range, every departure difference within
-    ``DEPARTURE_PCT`` % of the departure (as :func:`compare` gives them, any shape), and no run
-    that failed on the lean mesh only.
+    """Whether a lean stand-in may replace the default mesh.
+
+    Parameters
+    ----------
+    pose_pct : array_like
+        Pose differences, % of each component's range (:func:`compare`), finite, not empty.
+    departure_pct : array_like
+        Departure differences, % of the departure (:func:`compare`), finite, not empty.
+    failed_on_lean_only : int
+        Runs that failed on the lean mesh only, ≥ 0.
+
+    Returns
+    -------
+    bool
+        Every pose difference within ``POSE_PCT`` %, every departure difference within
+        ``DEPARTURE_PCT`` %, and no run that failed on the lean mesh only.
 
     Raises
     ------
     ValueError
-        On an empty or non-finite difference, or a negative count of failed runs.
+        On an empty or non-finite difference, or a count that is not an integer ≥ 0.
     """
     for name, values in (("pose_pct", pose_pct), ("departure_pct", departure_pct)):
         arr = np.asarray(values, dtype=float)
         if arr.size == 0 or not np.all(np.isfinite(arr)):
-            raise ValueError(f"{name} must be finite and not empty, got {values!r}")
-    if int(failed_on_lean_only) != failed_on_lean_only or failed_on_lean_only < 0:
-        raise ValueError(f"failed_on_lean_only must be a count ≥ 0, got {failed_on_lean_only!r}")
+            raise ValueError(f"{name} must be finite and not empty (in %), got {values!r}")
+    failed_on_lean_only = check_int("failed_on_lean_only", failed_on_lean_only, low=0)
     return bool(
         np.max(pose_pct) <= POSE_PCT
         and np.max(departure_pct) <= DEPARTURE_PCT
         and failed_on_lean_only == 0
     )
+
+
+def failed_on_lean_only(failed: Iterable[tuple[str, object]], lean: str = "lean mesh") -> list[int]:
+    """The runs that failed on the lean mesh and not on the other one.
+
+    Parameters
+    ----------
+    failed : iterable of (str, FailedRun)
+        Each failed run (anything with an ``index``, the run's row in the design) with the name
+        of the mesh it failed on.
+    lean : str
+        The lean mesh's name in ``failed``.
+
+    Returns
+    -------
+    list of int
+        Sorted design rows.
+    """
+    pairs = list(failed)
+    on_lean = {int(f.index) for mesh, f in pairs if mesh == lean}
+    return sorted(on_lean - {int(f.index) for mesh, f in pairs if mesh != lean})
