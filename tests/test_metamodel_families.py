@@ -167,7 +167,9 @@ def test_inverse_round_trips_on_a_nonlinear_polynomial() -> None:
     assert (np.abs(back - poses).max(axis=0) / np.abs(poses).max(axis=0)).max() < 1e-8
     span = np.abs(poses).max(axis=0)
     cmp = study.inverse_round_trip(fit, poses, lambda t: (np.arange(len(t)), f(t)), span)
-    assert cmp["converged"].all() and cmp["error_pct"].max() < 1e-6
+    # the forces are applied rounded to 1 µN, which alone moves these poses by ≈ 1e-4 %
+    assert cmp["converged"].all() and cmp["error_pct"].max() < 1e-3
+    assert np.array_equal(cmp["forces"], np.round(inv["forces"], study.FORCE_DECIMALS))
 
 
 def test_bad_inputs_are_refused_with_their_name() -> None:

@@ -111,7 +111,8 @@ def test_inverse_round_trip_applies_the_forces_and_leaves_unsolved_runs_out() ->
 
     out = study.inverse_round_trip(exact, _cubic_truth(x), truth_missing_one, span)
     assert out["solved"].tolist() == [0, 2] and out["converged"].all()
-    assert np.allclose(out["error_pct"], 100 * 0.01 / span)
+    # 0.01 off by construction; the rounding of the forces to 1 µN adds ≈ 1e-6 of a pose
+    np.testing.assert_allclose(out["error_pct"], 100 * 0.01 / span, rtol=1e-3)
     with pytest.raises(ValueError, match="span must be positive"):
         study.inverse_round_trip(exact, _cubic_truth(x), truth_missing_one, np.zeros(6))
 
@@ -129,4 +130,5 @@ def test_the_truth_is_given_rounded_forces_that_round_off_does_not_move() -> Non
         out = study.inverse_round_trip(model, _cubic_truth(x), truth, np.ones(6))
         assert np.array_equal(out["forces"], given[-1])
     assert np.array_equal(given[0], np.round(given[0], study.FORCE_DECIMALS))
-    assert np.array_equal(given[0], given[1]) and np.abs(given[0] - x).max() < 1e-8
+    assert np.array_equal(given[0], given[1])
+    assert np.abs(given[0] - x).max() <= 0.5 * 10.0**-study.FORCE_DECIMALS + 1e-12
