@@ -1,7 +1,8 @@
 """Where a build puts things, and the environment variables that move them.
 
 The one place that names the repository's build folders and the ``MECHLIB_*`` variables: the
-notebooks' :class:`~mechlib.records.Recorder` writes to :func:`records_dir`, the DOE chapter
+notebooks' :class:`~mechlib.reporting.records.Recorder` writes to :func:`records_dir`, the DOE
+chapter
 caches FE results in :func:`fe_cache_dir`, and the build wing sets the variables when it
 executes a notebook (a re-run into its own folders, ``make run`` into ``build/runs``).
 """

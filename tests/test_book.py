@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from mechlib import report
 from mechlib.paths import REPO_ROOT
 from mechlib.pipeline import bookbuild, verdicts
 from mechlib.pipeline.book import artefacts, cells, reportpage
+from mechlib.reporting import report
 
 FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
 

@@ -2,7 +2,7 @@
 
 The references were recorded before rows carried a category: :data:`DECLARATIONS` gives the
 ``basis``/``source`` that the notebooks are to declare (the table handed to the lead), applied
-here to those rows the way :mod:`mechlib.report` would set them.
+here to those rows the way :mod:`mechlib.reporting.report` would set them.
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ from typing import Any
 
 import pytest
 
-from mechlib import categories as cat
-from mechlib import report
 from mechlib.pipeline import landing, pagecheck, verdicts
+from mechlib.reporting import categories as cat
+from mechlib.reporting import report
 
 REFERENCES = Path(__file__).parent / "references"
 
@@ -55,7 +55,8 @@ DECLARATIONS: tuple[tuple[str, str, str, dict[str, str]], ...] = (
 
 
 def _declare(row: dict[str, Any], basis: str = "independent", source: str = "thesis") -> None:
-    """Set a reference row's category as :mod:`mechlib.report` would from its declaration."""
+    """Set a reference row's category as :mod:`mechlib.reporting.report` would from its
+    declaration."""
     holds = verdicts.row_holds(row)
     if row["published"] == "(claim)":
         report_row = report.claim_row("", "", "", holds, source=source, basis=basis)

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from mechlib import report
 from mechlib.params import check_choice, check_float, check_increasing, check_int
+from mechlib.reporting import report
 
 
 def test_checks_accept_good_values() -> None:

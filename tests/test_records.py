@@ -10,7 +10,7 @@ import pytest
 from mechlib.paths import REPO_ROOT, records_dir
 from mechlib.pipeline.book import quoted
 from mechlib.pipeline.references import compare
-from mechlib.records import load
+from mechlib.reporting.records import load
 
 REFERENCES = REPO_ROOT / "tests" / "references"
 NOTEBOOKS = sorted(p.stem for p in (REPO_ROOT / "notebooks").glob("*.ipynb"))

@@ -8,12 +8,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mechlib import paths, report
+from mechlib import paths
 from mechlib.pipeline.book import quoted
 from mechlib.pipeline.cli import main as pipeline_main
 from mechlib.pipeline.references import compare, update_references
 from mechlib.pipeline.rerun import rerun, rerun_differences, rerun_identical
-from mechlib.records import Recorder, load
+from mechlib.reporting import report
+from mechlib.reporting.records import Recorder, load
 
 
 def test_recorder_roundtrip_and_deterministic_bytes(tmp_path: Path) -> None:
@@ -78,7 +79,7 @@ def test_fe_cache_dir_follows_its_environment_variable(
 
 _PROBE = """\
 from mechlib.paths import fe_cache_dir, records_dir
-from mechlib.records import Recorder
+from mechlib.reporting.records import Recorder
 d = fe_cache_dir()
 rec = Recorder("probe")
 rec.value("cold_cache", not d.exists() or not any(d.iterdir()))
@@ -125,7 +126,7 @@ def test_a_rerun_into_a_relative_folder_writes_there(
 _CACHE_PROBE = """\
 import os
 from mechlib.paths import fe_cache_dir, fe_log_path
-from mechlib.records import Recorder
+from mechlib.reporting.records import Recorder
 rec = Recorder("probe")
 rec.value("copied", sorted(p.name for p in fe_cache_dir().iterdir()))
 rec.value("log_in_rerun", fe_log_path().parent == fe_cache_dir().parent)
@@ -280,7 +281,9 @@ def test_the_rerun_runs_two_chapters_at_a_time_each_after_its_inputs(tmp_path: P
     nbformat = pytest.importorskip("nbformat")
     notebooks, marker = tmp_path / "notebooks", tmp_path / "independent-started"
     notebooks.mkdir()
-    stamp = "import time\nfrom pathlib import Path\nfrom mechlib.records import Recorder\n"
+    stamp = (
+        "import time\nfrom pathlib import Path\nfrom mechlib.reporting.records import Recorder\n"
+    )
     stamp += f"M = Path({str(marker)!r})\n"
     upstream = stamp + (  # the model page waits (30 s at most) for the independent chapter
         "t0 = time.time()\nwhile not M.exists() and time.time() - t0 < 30:\n    time.sleep(0.1)\n"

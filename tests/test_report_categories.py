@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechlib import categories as cat
-from mechlib import report
 from mechlib.pipeline import verdicts
-from mechlib.records import Recorder
+from mechlib.reporting import categories as cat
+from mechlib.reporting import report
+from mechlib.reporting.records import Recorder
 
 
 def test_independent_agreement_is_reproduced_and_divergence_diverges() -> None:

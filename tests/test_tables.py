@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mechlib import published as pub
-from mechlib import tables
+from mechlib.reporting import tables
 
 
 @pytest.mark.parametrize(

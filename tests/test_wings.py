@@ -86,7 +86,7 @@ def circles(graph: dict[str, set[str]]) -> list[set[str]]:
 
 
 def test_the_graph_is_read() -> None:
-    assert "mechlib.records" in GRAPH["mechlib.pipeline.execute"]
+    assert "mechlib.reporting.records" in GRAPH["mechlib.pipeline.execute"]
     assert "mechlib.hexflex.geometry" in GRAPH["mechlib.hexflex.fe.model"]  # `from pkg import mod`
     assert circles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [{"a", "b", "c"}]
 

@@ -32,7 +32,7 @@ from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
 from mechlib.pipeline import bundle, landing, provenance, storecmd, verdicts
 from mechlib.pipeline.book import artefacts, methods, reportpage
 from mechlib.pipeline.book.cells import prepare_notebook
-from mechlib.records import load
+from mechlib.reporting.records import load
 
 REPORT_HEADER = """---
 html_theme.sidebar_secondary.remove: true

@@ -21,7 +21,7 @@ import yaml
 from mechlib.paths import DEFAULT_BUILD, RECORDS_ENV, RECORDS_STRICT_ENV
 from mechlib.pipeline.chapters import CHAPTER_INPUTS
 from mechlib.pipeline.parameters import given_parameters
-from mechlib.records import load
+from mechlib.reporting.records import load
 
 
 def papermill_command(

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from mechlib import categories as cat
+from mechlib.reporting import categories as cat
 
 #: A recorded value: (notebook, record key, index into the value, or "max"/"min" of it, or None).
 Quote = tuple[str, str, int | tuple[int, ...] | str | None]

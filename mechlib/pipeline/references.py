@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from mechlib.records import load
+from mechlib.reporting.records import load
 
 
 def _compare_value(key: str, got: Any, ref: Any, rtol: float, atol: float) -> list[str]:

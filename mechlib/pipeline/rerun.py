@@ -19,7 +19,7 @@ from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_
 from mechlib.pipeline.chapters import in_order, upstream
 from mechlib.pipeline.execute import input_arguments, papermill_command
 from mechlib.pipeline.references import compare
-from mechlib.records import load
+from mechlib.reporting.records import load
 
 #: file of the re-run's folder that logs its FE cache hits (``$MECHLIB_FE_LOG``)
 HIT_LOG = "fe-cache-hits.jsonl"

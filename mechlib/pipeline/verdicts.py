@@ -1,7 +1,8 @@
 """Report rows gathered from the records, counted per verdict category and rolled up per artefact.
 
-The rows are the ones the notebooks recorded (:mod:`mechlib.report` builds them, with a
-``category`` from :mod:`mechlib.categories`). This module reads them back from the records, counts
+The rows are the ones the notebooks recorded (:mod:`mechlib.reporting.report` builds them, with a
+``category`` from :mod:`mechlib.reporting.categories`). This module reads them back from the
+records, counts
 them per category, rolls them up per thesis artefact (Tables 1–8, Figs 1–14, Eqs 6–11: the
 thesis's inventory is :data:`THESIS_ARTEFACTS`) and names the artefacts that no row reports on.
 The landing page (:mod:`mechlib.pipeline.landing`) and the report page show the same counts, made
@@ -16,9 +17,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from mechlib import categories as cat
-from mechlib import report
 from mechlib.pipeline.book import artefacts
+from mechlib.reporting import categories as cat
+from mechlib.reporting import report
 
 #: Every numbered artefact of the thesis that the book reproduces, with its chapter and a short
 #: title after its caption (``shared/paper/thesis.md``: Tables 1–5, Figs 1–8 and Eqs 6–11 in
@@ -131,7 +132,7 @@ def row_category(fields: Mapping[str, Any]) -> str:
     Raises
     ------
     ValueError
-        For a category or verdict that :mod:`mechlib.report` does not produce.
+        For a category or verdict that :mod:`mechlib.reporting.report` does not produce.
     """
     if "category" in fields:
         if fields["category"] not in cat.CATEGORIES:
@@ -177,7 +178,8 @@ def load_rows(records: Records | Path) -> list[ReportRow]:
     Parameters
     ----------
     records : mapping or Path
-        ``{notebook: record}`` (a record as :class:`mechlib.records.Recorder` saves it) or a
+        ``{notebook: record}`` (a record as :class:`mechlib.reporting.records.Recorder` saves it)
+        or a
         folder holding the record files.
     """
     return [
@@ -207,7 +209,7 @@ REDRAWN: tuple[tuple[str, str, str], ...] = (
 
 
 def redrawn_rows() -> list[ReportRow]:
-    """One row per method figure of :data:`REDRAWN`: category :data:`~mechlib.categories.
+    """One row per method figure of :data:`REDRAWN`: category :data:`~mechlib.reporting.categories.
     CAT_REDRAWN` (a diagram of the thesis's text: nothing computed, nothing to compare)."""
     return [
         ReportRow(
@@ -326,7 +328,8 @@ def report_cells(fields: Mapping[str, Any]) -> dict[str, str]:
     """The Published, Ours, Difference and Verdict cells of a report row, as plain text.
 
     The Verdict cell is the row's category, then its cause (a divergence) or the tolerance its
-    agreement met; the Difference cell is :func:`mechlib.categories.difference_text`'s (a row
+    agreement met; the Difference cell is :func:`mechlib.reporting.categories.difference_text`'s (a
+    row
     recorded before it existed shows its largest absolute difference, never a relative one).
     """
     category = row_category(fields)

@@ -1,8 +1,10 @@
 """The numbers the book's prose quotes: each must be a value the notebook recorded.
 
-A notebook glues a number for its text through :meth:`mechlib.records.Recorder.value`, which
+A notebook glues a number for its text through :meth:`mechlib.reporting.records.Recorder.value`,
+which
 records it with its tolerance and notes the glue name in the record's ``"glue"`` section (text
-glued by :meth:`~mechlib.records.Recorder.text` is noted there with what it is made of, or why
+glued by :meth:`~mechlib.reporting.records.Recorder.text` is noted there with what it is made of,
+or why
 it is not checked). :func:`unchecked_glue` compares the glue roles of a page with that section,
 so a number that reached the prose by a plain ``glue`` call — unchecked by the references — is
 found (``tests/test_records.py``).

@@ -1,6 +1,7 @@
 """The reproduction report page (ReScience style) and its verdict summary.
 
-Rows come from the records the notebooks wrote (:mod:`mechlib.report` builds them); this module
+Rows come from the records the notebooks wrote (:mod:`mechlib.reporting.report` builds them); this
+module
 only arranges them: one table per thesis chapter in the thesis's order, a count of verdicts at the
 top, each row linked to the section of the chapter page that shows it.
 """
@@ -12,9 +13,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mechlib import report
 from mechlib.pipeline import verdicts
 from mechlib.pipeline.book import artefacts
+from mechlib.reporting import report
 
 #: what a claim row shows as its published value (its "ours" is evidence text, kept as written)
 CLAIM = report.claim_row("", "", "", True)["published"]

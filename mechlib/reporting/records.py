@@ -2,7 +2,7 @@
 
 A notebook creates one :class:`Recorder`, records each key number together with the tolerance
 that the numerics can guarantee — in the same call glued for the page's text and completed into
-its reproduction-report row (:mod:`mechlib.report`) — and saves
+its reproduction-report row (:mod:`mechlib.reporting.report`) — and saves
 ``<records folder>/<notebook>.json`` (:func:`mechlib.paths.records_dir`). :func:`load` reads one
 back. What the build does with records — compare them with ``tests/references``, update those,
 check a cold re-run gives the same bytes — is the build wing's (:mod:`mechlib.pipeline`).
@@ -18,9 +18,9 @@ from typing import Any
 
 import numpy as np
 
-from mechlib import report
 from mechlib.params import check_float
 from mechlib.paths import records_dir
+from mechlib.reporting import report
 
 
 def _plain(value: Any) -> Any:
@@ -105,7 +105,7 @@ class Recorder:
             Glue name of a scalar number, or ``{name: index}`` to glue elements of an array
             (as Python ``float``/``int``, what myst-nb formats).
         row : report.Comparison, report.Claim or report.Computed, or a list of them
-            Report rows completed with this value (see :mod:`mechlib.report`).
+            Report rows completed with this value (see :mod:`mechlib.reporting.report`).
 
         Returns
         -------

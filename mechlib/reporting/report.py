@@ -3,7 +3,8 @@
 A row is built by :func:`compare_row` (numbers against the published ones), :func:`claim_row`
 (a statement checked by a computed test) or :func:`computed_row` (a number the thesis does not
 publish). Notebooks describe a row without "ours" — :class:`Comparison`, :class:`Claim`,
-:class:`Computed` — and hand it to :meth:`mechlib.records.Recorder.value`, which fills in the
+:class:`Computed` — and hand it to :meth:`mechlib.reporting.records.Recorder.value`, which fills in
+the
 value it records: the number in the report is then the number checked against the references.
 The build wing (:mod:`mechlib.pipeline.bookbuild`) gathers the rows of every record into the book's
 report page. A verdict is never typed: it follows from the numbers and tolerances given.
@@ -18,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from mechlib import categories as cat
 from mechlib.params import check_float, check_int
+from mechlib.reporting import categories as cat
 
 REPRODUCED = "reproduced"
 WITHIN = "within tolerance"
@@ -74,7 +75,7 @@ def compare_row(
         construction", not a reproduction. ``"thesis-inconsistency"``: the comparison sets
         published values against each other, so a divergence is an "inconsistency inside the
         thesis" and an agreement is "consistent inside the thesis", never a reproduction
-        (categories: :mod:`mechlib.categories`).
+        (categories: :mod:`mechlib.reporting.categories`).
     source : {"thesis", "ours"}
         ``"ours"``: the row tests a hypothesis of ours ("our finding beyond the thesis", never
         counted with the thesis's values).

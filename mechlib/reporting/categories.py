@@ -1,6 +1,7 @@
 """Verdict categories of the reproduction report, and the cells that describe a difference.
 
-Every report row (:mod:`mechlib.report`) carries a ``category``: a structured field set from the
+Every report row (:mod:`mechlib.reporting.report`) carries a ``category``: a structured field set
+from the
 numbers and from what the row declares — the ``basis`` of an agreement and the ``source`` of a
 statement — never parsed back from the verdict text. The report's tallies and the landing page
 count these categories; only :data:`CLAIM_CATEGORIES` are counted as claims of the thesis, and a
