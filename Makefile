@@ -27,6 +27,12 @@ NB_DEFERRED := $(shell $(PYTHON_BOOT) $(CHAPTERS) deferred)
 MECHLIB_SRC := $(filter-out mechlib/pipeline/%,$(shell find mechlib -name '*.py' 2>/dev/null))
 EXECUTED    := $(patsubst %,$(BUILD)/executed/%.ipynb,$(NB_NAMES))
 PIPELINE    := $(PY) -m mechlib.pipeline
+# the FE results store (store/) and the stamp of the build's FE cache seeded from it: every target
+# that executes a notebook (book, run, notebooks, test, store) reads the store's runs instead of
+# solving them; a stale, edited or corrupt store is refused in one line before any notebook runs
+STORE       := store
+FE_CACHE    := $(BUILD)/cache/experiments
+STORE_SEEDED := $(FE_CACHE)/.store-seeded
 # the targets that compare with tests/references run the ci profile only
 REQUIRE_CI   = @test "$(PROFILE)" = ci || { echo "make $@ runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
 export PYTHONHASHSEED := 0
@@ -75,7 +81,8 @@ lock: $(UV)
 # --- notebooks --------------------------------------------------------------------------------
 # An executed notebook depends on its source, on mechlib and on the environment: nothing else
 # changes its output, so an unchanged notebook is not re-executed.
-$(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard $(PROFILE_DIR)/*.yaml)
+$(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard $(PROFILE_DIR)/*.yaml) \
+  | $(STORE_SEEDED)
 	@test "$(PROFILE)" = ci || test -d $(PROFILE_DIR) || { echo "no profile $(PROFILE_DIR)"; exit 2; }
 	@mkdir -p $(BUILD)/executed $(BUILD)/records
 	@echo "executing $< (profile $(PROFILE))"
@@ -130,7 +137,7 @@ test: $(STAMP)
 	@# (a seeded sample of them is recomputed cold by the last step, `determinism`). The FE
 	@# results store seeds the cache first, and a sample of it is recomputed cold beside the
 	@# re-run.
-	$(MAKE) --no-print-directory store-seed
+	$(MAKE) --no-print-directory $(STORE_SEEDED)
 	$(MAKE) --no-print-directory -j2 unit notebooks
 	$(MAKE) --no-print-directory check-records
 	@# the determinism re-run beside the store's cold sample: the re-run's chapters wait on
@@ -156,10 +163,17 @@ determinism-check: $(STAMP)
 # The pose-level results of the notebooks' FE runs, computed once (`make store`) and kept in the
 # repository: `make test` seeds the build's FE cache from it (refusing a stale, edited or corrupt
 # store in one line) and recomputes a sample of it cold, seeded by the commit.
-STORE      := store
 STORE_LOG  := $(BUILD)/store-tasks.jsonl
+# seeded once per store (again when store/ changes or the cache is removed); `make store-seed`
+# seeds again whatever the stamp says
+$(STORE_SEEDED): $(wildcard $(STORE)/manifest.json $(STORE)/results.npz) | $(STAMP)
+	$(if $(NO_STORE_SEED),@echo "store: not read (make store FROM_EMPTY=1 solves every FE task)",\
+	  $(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE))
+	@mkdir -p $(FE_CACHE) && touch $@
+
 store-seed: $(STAMP)
-	$(PIPELINE) store seed --store $(STORE) --cache $(BUILD)/cache/experiments
+	$(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE)
+	@mkdir -p $(FE_CACHE) && touch $(STORE_SEEDED)
 
 store-check: $(STAMP)
 	@if test -f $(STORE)/manifest.json; then $(PIPELINE) store check --store $(STORE); \
@@ -167,13 +181,14 @@ store-check: $(STAMP)
 
 store: $(STAMP)
 	$(REQUIRE_CI)
+	$(PIPELINE) store clean
 	$(if $(FROM_EMPTY),rm -rf $(BUILD)/cache/experiments)
 	rm -rf $(BUILD)/executed $(STORE_LOG)
 	@mkdir -p $(BUILD)
-	start=$$(date +%s); \
+	start=$$(date +%s); head=$$(git rev-parse --short=12 HEAD); \
 	MECHLIB_FE_LOG=$(abspath $(STORE_LOG)) $(if $(DASK_SCHEDULER),MECHLIB_DASK_SCHEDULER=$(DASK_SCHEDULER)) \
-	  $(MAKE) --no-print-directory -j2 notebooks; \
-	$(PIPELINE) store pack --log $(STORE_LOG) --cache $(BUILD)/cache/experiments --store $(STORE) \
+	  $(MAKE) --no-print-directory -j2 notebooks $(if $(FROM_EMPTY),NO_STORE_SEED=1); \
+	$(PIPELINE) store pack --log $(STORE_LOG) --cache $(FE_CACHE) --store $(STORE) --commit $$head \
 	  --seconds $$(( $$(date +%s) - start )) \
 	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)" \
 	  $(if $(FROM_EMPTY),--from-empty)
@@ -186,7 +201,7 @@ rerun: $(STAMP)
 	$(PIPELINE) rerun --out $(abspath $(RERUN)) $(if $(FE_CACHE_FROM),--fe-cache-from $(FE_CACHE_FROM))
 
 # --- one notebook with new parameters ---------------------------------------------------------
-run: $(STAMP)
+run: $(STAMP) $(STORE_SEEDED)
 	@test -n "$(NB)" || { echo "usage: make run NB=<notebook name> ARGS='-p name value ...'"; exit 2; }
 	@test -f notebooks/$(NB).ipynb || { echo "no notebook notebooks/$(NB).ipynb; have: $(NB_NAMES)"; exit 2; }
 	$(PIPELINE) run --notebook notebooks/$(NB).ipynb --out $(BUILD)/runs --records $(BUILD)/records \

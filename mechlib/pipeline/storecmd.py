@@ -2,6 +2,7 @@
 
 =======  ==========================================================================================
 seed     write the store's tasks into a build's FE cache (refuses a stale, edited or corrupt store)
+clean    refuse a work tree with uncommitted changes (``make store`` starts with it)
 pack     collect every FE task a build logged into the store, with its provenance (``make store``)
 check    recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
 =======  ==========================================================================================
@@ -77,10 +78,44 @@ def _seed(args: argparse.Namespace) -> int:
     return 0
 
 
+#: what :func:`mechlib.pipeline.provenance.commit` appends for a tree with uncommitted changes
+DIRTY = "local changes"
+
+
+def clean_commit(expected: str | None = None) -> str:
+    """The checked-out commit, refusing a tree with uncommitted changes (a store must be
+    reproducible from a commit) or, with ``expected``, a commit other than the one a build started
+    from.
+
+    Raises
+    ------
+    StoreError
+        Naming the commit and what to do.
+    """
+    head = commit()
+    if DIRTY in head:
+        raise store.StoreError(
+            f"the work tree has uncommitted changes ({head}): commit them, then `make store`, so "
+            "that the store records the commit that computed it"
+        )
+    if expected is not None and not expected.startswith(head) and not head.startswith(expected):
+        raise store.StoreError(
+            f"the checked-out commit {head} is not {expected}, the one the build started from: "
+            "run `make store` again on one commit"
+        )
+    return head
+
+
+def _clean(args: argparse.Namespace) -> int:
+    print(f"store: work tree clean at commit {clean_commit()}")
+    return 0
+
+
 def _pack(args: argparse.Namespace) -> int:
+    head = clean_commit(args.commit)
     entries = store.entries_from_cache(args.log, args.cache)
     provenance = {
-        "commit": commit(),
+        "commit": head,
         "date": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
         "processor": cpu_model(),
         "python": platform.python_version(),
@@ -128,7 +163,10 @@ def parser() -> argparse.ArgumentParser:
     seed.add_argument("--store", type=Path, required=True)
     seed.add_argument("--cache", type=Path, required=True)
     seed.set_defaults(func=_seed)
+    clean = sub.add_parser("clean", help="refuse a work tree with uncommitted changes")
+    clean.set_defaults(func=_clean)
     pack = sub.add_parser("pack", help="a build's logged FE tasks into the store")
+    pack.add_argument("--commit", default=None, help="the commit the build started from")
     pack.add_argument("--log", type=Path, required=True)
     pack.add_argument("--cache", type=Path, required=True)
     pack.add_argument("--store", type=Path, required=True)
