@@ -239,6 +239,14 @@ TABLE5 = parse_printed(_TABLE5)
 TABLE5_RESOLUTION = printed_resolution(_TABLE5)
 TABLE5_N_RUNS: int = 1000
 
+# --- sec. 2.7 (conclusions): the yardsticks by which the thesis judges Table 5 ----------------
+TABLE5_ACCEPTABLE_MAXABS_UM: float = 19.0
+"""The ISO h6 tolerance of a Ø50 mm shaft (50 −19/+0 µm) against which sec. 2.7 finds Table 5's
+largest absolute error acceptable [µm]."""
+TABLE5_PETRI_REL_ERROR_PCT: float = 3.0
+"""The largest relative error of P. A. Petri's beam model against FEA (thesis ref. [55]), which
+sec. 2.7 says Table 5's relative errors improve on [%]."""
+
 # --- Table 7: planar 5R parameters, nominal and disturbed ("real") --------------------------
 # printed order; lengths in m, angles in rad, gains dimensionless.
 TABLE7_NAMES: tuple[str, ...] = (

@@ -9,9 +9,9 @@ import pytest
 import yaml
 
 from mechlib.paths import REPO_ROOT
-from mechlib.pipeline import bookbuild, verdicts
-from mechlib.pipeline.book import artefacts, cells, reportpage
-from mechlib.reporting import report
+from mechlib.pipeline import bookbuild
+from mechlib.pipeline.book import cells, reportpage
+from mechlib.reporting import artefacts, report, verdicts
 
 FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
 
@@ -184,8 +184,10 @@ ROWS = [
     report.compare_row("Eq 8", "S", [1.0], [1.0]),
     report.compare_row("Table 5", "err", [1.0], [1.5], cause="non-linear"),
     report.compare_row("Table 1", "levels", [1.0], [1.004], rtol=0.01),
-    report.claim_row("Fig 6", "dominant factors", "x: T1D1 (-1.0 N)", True),
-    report.claim_row("Table 3", "m = 6", "no", False),
+    report.check_row(
+        "Fig 6", "dominant factors", "x: T1D1 (-1.0 N)", True, basis="thesis-inconsistency"
+    ),
+    report.check_row("Table 3", "m = 6", "no", False, basis="construction"),
     report.computed_row("Fig 2", "dims", [0.493389]),
 ]
 
@@ -209,7 +211,7 @@ def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
     ]
     assert order == ["Table 1", "Table 3", "Table 5", "Fig 2", "Fig 6", "Eq 8"]
     assert "x: T1D1 (-1.0 N)" in table  # claim evidence is shown as written
-    assert "diverges: non-linear" in table  # the category, then the cause
+    assert "{category}`diverges`: non-linear" in table  # the category (marked), then the cause
 
 
 # --- toc and report assembly ---------------------------------------------------------------------

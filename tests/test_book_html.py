@@ -15,8 +15,9 @@ from pathlib import Path
 import pytest
 
 from mechlib.paths import REPO_ROOT, records_dir
-from mechlib.pipeline import bundle, pagecheck, verdicts
+from mechlib.pipeline import bundle, pagecheck
 from mechlib.pipeline.book import figures, htmlcheck
+from mechlib.reporting import verdicts
 
 HTML = REPO_ROOT / "book" / "_build" / "html"
 

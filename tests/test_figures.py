@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mechlib.pipeline import verdicts
 from mechlib.pipeline.book import figures, methods
 from mechlib.pipeline.book.cells import prepare_notebook
+from mechlib.reporting import verdicts
 
 ROOT = Path("/nowhere/repo")
 _IMAGE = {"output_type": "display_data", "data": {"image/png": "iVBOR", "text/plain": "<Fig>"}}

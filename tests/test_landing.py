@@ -1,9 +1,4 @@
-"""The landing page and the per-artefact roll-up, generated from the committed reference records.
-
-The references were recorded before rows carried a category: :data:`DECLARATIONS` gives the
-``basis``/``source`` that the notebooks are to declare (the table handed to the lead), applied
-here to those rows the way :mod:`mechlib.reporting.report` would set them.
-"""
+"""The landing page and the per-artefact roll-up, generated from the committed reference records."""
 
 from __future__ import annotations
 
@@ -14,75 +9,15 @@ from typing import Any
 
 import pytest
 
-from mechlib.pipeline import landing, pagecheck, verdicts
+from mechlib.pipeline import landing, pagecheck
 from mechlib.reporting import categories as cat
-from mechlib.reporting import report
+from mechlib.reporting import report, verdicts
 
 REFERENCES = Path(__file__).parent / "references"
 
-#: (notebook, artefact, start of quantity, declaration): what each row is to declare.
-DECLARATIONS: tuple[tuple[str, str, str, dict[str, str]], ...] = (
-    ("published_doe", "Table 2", "design matrix", {"basis": "construction"}),
-    ("published_doe", "Table 2", "unit ratio", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 4", "unit ratio", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 3", "ν (median", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 3", "S₀ = 1.5", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 3", "ME (Lenth", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 3", "SME (Lenth", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Table 3", "ME, SME of x under", {"source": "ours"}),
-    ("published_doe", "Table 4", "CD² vs the published", {"source": "ours"}),
-    ("published_doe", "Eq 8", "S_T vs OLS fit to Table 2", {"source": "ours"}),
-    ("published_doe", "Eq 8", "S_T vs OLS fit to Table 4", {"basis": "thesis-inconsistency"}),
-    ("published_doe", "Eq 8", "S_T vs ridge fit", {"basis": "thesis-inconsistency"}),
-    ("hexflex_model", "Eq 8", "x←T1D1", {"basis": "construction"}),
-    ("hexflex_model", "Eq 8", "z←T1D2", {"basis": "construction"}),
-    ("hexflex_model", "Eq 8", "θx←T1D2", {"basis": "construction"}),
-    ("hexflex_model", "Eq 8", "|θz←T1D1|", {"basis": "construction"}),
-    ("hexflex_model", "Eq 8", "all 16 non-zero", {"basis": "construction"}),
-    ("virtual_experiments", "Table 2", "responses on our FE", {"basis": "construction"}),
-    ("virtual_experiments", "Table 3", "the same factors dominate", {"basis": "construction"}),
-    ("virtual_experiments", "Table 4", "responses on our FE", {"basis": "construction"}),
-    ("virtual_experiments", "Eq 7", "S_T fitted on our Table 4", {"basis": "construction"}),
-    ("virtual_experiments", "Eq 6", "quadratic and interaction", {"basis": "construction"}),
-    ("virtual_experiments", "Eq 9", "S_T⁻¹ S_T = I", {"basis": "construction"}),
-    ("virtual_experiments", "Table 5", "linear meta-model vs linear FE", {"basis": "construction"}),
-    ("virtual_experiments", "Table 5", "(ours) the published errors", {"source": "ours"}),
-    ("fivebar_identification", "Table 7", "nominal parameters", {"basis": "construction"}),
-    ("fivebar_identification", "Table 8", "measurement cost", {"basis": "thesis-inconsistency"}),
-    ("fivebar_identification", "Figs 13–14 (sensitivity)", "D&C better", {"source": "ours"}),
-    ("fivebar_identification", "Tables 6, 8", "regressor", {"basis": "thesis-inconsistency"}),
-)
-
-
-def _declare(row: dict[str, Any], basis: str = "independent", source: str = "thesis") -> None:
-    """Set a reference row's category as :mod:`mechlib.reporting.report` would from its
-    declaration."""
-    holds = verdicts.row_holds(row)
-    if row["published"] == "(claim)":
-        report_row = report.claim_row("", "", "", holds, source=source, basis=basis)
-        row["category"] = report_row["category"]
-    else:
-        row["category"] = cat.comparison_category(holds, basis, source)
-
-
-def declared_references() -> dict[str, dict[str, Any]]:
-    """The reference records with :data:`DECLARATIONS` applied (each must match one row)."""
-    records = verdicts.load_records(REFERENCES)
-    records = copy.deepcopy(records)
-    for notebook, artefact, quantity, kwargs in DECLARATIONS:
-        rows = [
-            r
-            for r in records[notebook]["report"]
-            if r["artefact"] == artefact and r["quantity"].startswith(quantity)
-        ]
-        assert len(rows) == 1, (notebook, artefact, quantity)
-        _declare(rows[0], **kwargs)
-    return records
-
-
 @pytest.fixture(scope="module")
 def records() -> dict[str, dict[str, Any]]:
-    return declared_references()
+    return copy.deepcopy(verdicts.load_records(REFERENCES))
 
 
 @pytest.fixture(scope="module")
@@ -203,19 +138,9 @@ def test_rollup_counts_each_named_artefact_and_summarises_values() -> None:
     assert "Table 3: no report row" not in pagecheck.artefact_problems(rows)
 
 
-def test_the_references_carry_every_declaration() -> None:
-    plain = verdicts.load_rows(REFERENCES)
-    declared = verdicts.load_rows(declared_references())
-    # the notebooks declare them: the references carry every declaration already
-    changed = [a for a, b in zip(plain, declared, strict=True) if a.category != b.category]
-    assert changed == []
-
-
-def test_legacy_rows_map_their_verdict_and_unknown_ones_are_refused() -> None:
-    assert verdicts.row_category({"verdict": "within tolerance (1 %)"}) == cat.CAT_REPRODUCED
-    assert verdicts.row_category({"verdict": "diverges: x"}) == cat.CAT_DIVERGES
-    with pytest.raises(ValueError, match="unknown verdict"):
-        verdicts.row_category({"verdict": "fine"})
+def test_a_row_without_a_known_category_is_refused_never_parsed() -> None:
+    with pytest.raises(ValueError, match="unknown category None"):
+        verdicts.row_category({"verdict": "within tolerance (1 %)"})
     with pytest.raises(ValueError, match="unknown category"):
         verdicts.row_category({"verdict": "reproduced", "category": "fine"})
     assert json.loads(json.dumps(verdicts.rollup(verdicts.load_rows(REFERENCES))))

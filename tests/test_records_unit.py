@@ -265,15 +265,19 @@ def test_report_rows_report_the_recorded_value() -> None:
     rec.value(
         "t.part", [[5.0, 1.0]], rtol=0, atol=0, row=report.Comparison("Eq 8", "x", 1.0, part=(0, 1))
     )
-    rec.value("t.holds", [True, True], row=report.Claim("Fig 6", "claim", "evidence"))
+    rec.value(
+        "t.holds",
+        [True, True],
+        row=report.Check("Fig 6", "statement", "evidence", basis="thesis-inconsistency"),
+    )
     rec.value("t.dims", [0.3, 0.5], atol=0, row=report.Computed("Fig 2", "dims"))
     verdicts = [r["verdict"] for r in rec.report]
-    assert verdicts == ["reproduced", "reproduced", "claim supported", report.COMPUTED]
+    assert verdicts == ["reproduced", "reproduced", "consistent inside the thesis", report.COMPUTED]
     assert rec.report[0]["ours"] == "1.004, 2"
     with pytest.raises(ValueError, match="a cause must be given"):
         rec.value("t.bad", 1.2, rtol=0, row=report.Comparison("T", "q", 1.0))
-    with pytest.raises(TypeError, match="a claim holds or not"):
-        rec.value("t.num", 0.7, atol=0, row=report.Claim("T", "c", "e"))
+    with pytest.raises(TypeError, match="a check holds or not"):
+        rec.value("t.num", 0.7, atol=0, row=report.Check("T", "c", "e", basis="construction"))
     assert "t.bad" not in rec.values and "t.num" not in rec.values
 
 

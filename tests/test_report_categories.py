@@ -5,9 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mechlib.pipeline import verdicts
 from mechlib.reporting import categories as cat
-from mechlib.reporting import report
+from mechlib.reporting import report, verdicts
 from mechlib.reporting.records import Recorder
 
 
@@ -91,24 +90,21 @@ def test_long_arrays_are_summarised_not_truncated_lists() -> None:
     assert "…" not in report.compare_row("T", "q", design, design)["ours"]
 
 
-def test_claims_thesis_ours_and_mixed() -> None:
-    assert report.claim_row("Eq 6", "c", "e", True)["category"] == cat.CAT_SUPPORTED
-    assert report.claim_row("Eq 6", "c", "e", False)["category"] == cat.CAT_NOT_SUPPORTED
-    ours = report.claim_row("Table 5", "(ours) linear FE", "e", True, source="ours")
-    assert ours["category"] == cat.CAT_OURS and ours["verdict"] == report.SUPPORTED
-    mixed = report.claim_row("Figs 6–7", "c", "e", [True, False, True], mixed=True)
-    assert mixed["category"] == cat.CAT_MIXED and mixed["verdict"].startswith(report.NOT_SUPPORTED)
-    assert (mixed["n_values"], mixed["n_agree"]) == (3, 2)
-    # without mixed=True, one failing part is "not supported"
-    assert report.claim_row("T", "c", "e", [True, False])["category"] == cat.CAT_NOT_SUPPORTED
-
-
-def test_a_failed_claim_by_construction_is_our_divergence_not_the_thesis_claim() -> None:
-    held = report.claim_row("Eq 6", "negligible", "e", True, basis="construction")
-    assert held["category"] == cat.CAT_CONSTRUCTION
-    failed = report.claim_row("Eq 6", "negligible", "e", False, basis="construction")
+def test_a_check_is_consistent_by_construction_or_inside_the_thesis_never_a_claim() -> None:
+    held = report.check_row("Eq 9", "S⁻¹S = I", "e", True, basis="construction")
+    assert held["category"] == cat.CAT_CONSTRUCTION and held["published"] == "(check)"
+    failed = report.check_row("Eq 9", "S⁻¹S = I", "e", False, basis="construction")
     assert failed["category"] == cat.CAT_DIVERGES
-    assert failed["verdict"].startswith(report.DIVERGES)
+    assert failed["verdict"].startswith(cat.CAT_DIVERGES)
+    table1 = report.check_row("Table 1", "±1 N", "e", [True, True], basis="thesis-inconsistency")
+    assert table1["category"] == cat.CAT_CONSISTENT_THESIS
+    split = report.check_row("Figs 6–7", "c", "e", [True, False], basis="thesis-inconsistency")
+    assert split["category"] == cat.CAT_INCONSISTENT and (split["n_values"], split["n_agree"]) == (
+        2,
+        1,
+    )
+    with pytest.raises(ValueError, match="claimlist"):
+        report.check_row("Table 5", "(ours) h", "e", True, basis="independent")
     assert cat.CAT_DIVERGES not in cat.CLAIM_CATEGORIES
 
 
@@ -128,13 +124,11 @@ def test_specs_pass_basis_and_source_through_the_recorder() -> None:
     rec.value(
         "a", [57.53], rtol=0, row=report.Comparison("Eq 8", "x", [57.53], basis="construction")
     )
-    rec.value("b", True, row=report.Claim("Table 5", "(ours) h", "e", source="ours"))
-    rec.value("c", [True, False], row=report.Claim("Figs 6–7", "c", "e", mixed=True))
+    rec.value("c", [True, False], row=report.Check("Figs 6–7", "c", "e", "thesis-inconsistency"))
     rec.value("d", [1e-8, 10.0], rtol=0, row=report.NotReproduced("Table 5", "q", [1e-3], "x"))
     assert [r["category"] for r in rec.report] == [
         cat.CAT_CONSTRUCTION,
-        cat.CAT_OURS,
-        cat.CAT_MIXED,
+        cat.CAT_INCONSISTENT,
         cat.CAT_NOT_REPRODUCED,
     ]
 
@@ -146,7 +140,7 @@ def test_category_lists_are_consistent() -> None:
 
 
 def test_report_cells_give_category_tolerance_or_cause_and_a_bounded_difference() -> None:
-    from mechlib.pipeline import verdicts
+    from mechlib.reporting import verdicts
 
     agree = report.compare_row("Table 3", "q", [0.17], [0.166667], resolution=0.005)
     cells = verdicts.report_cells(agree)
@@ -162,9 +156,11 @@ def test_report_cells_give_category_tolerance_or_cause_and_a_bounded_difference(
         "Table 3", "ν", [19.63], [28763.8], cause="x repeats θx", basis="thesis-inconsistency"
     )
     assert verdicts.report_cells(off)["verdict"] == "inconsistency inside the thesis: x repeats θx"
-    legacy = {"published": "1, 2", "ours": "1, 3", "max_abs_diff": 1.0, "max_rel_diff": 2.9e6,
-              "verdict": "diverges: c"}  # fmt: skip
-    assert verdicts.report_cells(legacy)["difference"] == "1"
-    claim = verdicts.report_cells(report.claim_row("Eq 6", "c", "ratio 2e-8", True))
-    assert claim == {"published": "(claim)", "ours": "ratio 2e-8", "difference": "—",
-                     "verdict": "thesis claim supported"}  # fmt: skip
+    legacy = {"published": "1, 2", "ours": "1, 3", "max_abs_diff": 1.0, "verdict": "diverges: c"}
+    with pytest.raises(ValueError, match="unknown category None"):
+        verdicts.report_cells(legacy)  # a row without a category is refused, never parsed
+    check = verdicts.report_cells(
+        report.check_row("Eq 6", "c", "ratio 2e-8", True, basis="construction")
+    )
+    assert check == {"published": "(check)", "ours": "ratio 2e-8", "difference": "—",
+                     "verdict": "consistent by construction"}  # fmt: skip

@@ -191,7 +191,8 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     ]
     folder = st.write_store(entries, tmp_path / "store", {"date": "2026-11-25", "commit": "abc"})
     line = storecmd.landing_line(folder)
-    assert "holds 1 non-linear runs and 3 linear load cases" in line and "commit `abc`" in line
+    assert "1 geometrically non-linear runs and 3 linear load cases" in line
+    assert "at commit `abc`" in line and "not solved again in this build" in line
     miss = (1 - storecmd.WRONG_SHARE) ** storecmd.COLD_NONLINEAR
     assert f"probability {miss:.1%}" in line and f"{miss:.1%}" == "4.2%"
     with pytest.raises(ValueError, match="wrong_share must be in"):

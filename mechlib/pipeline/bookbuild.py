@@ -29,10 +29,10 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
-from mechlib.pipeline import bundle, landing, provenance, storecmd, verdicts
-from mechlib.pipeline.book import artefacts, methods, reportpage
+from mechlib.pipeline import bundle, landing, provenance, storecmd
+from mechlib.pipeline.book import methods, reportpage, verdictrole
 from mechlib.pipeline.book.cells import prepare_notebook
-from mechlib.reporting.records import load
+from mechlib.reporting import artefacts, claimlist, verdicts
 
 REPORT_HEADER = """---
 html_theme.sidebar_secondary.remove: true
@@ -149,39 +149,37 @@ def copy_chapters(
 
 def report_rows(
     records: Path, chapters: list[reportpage.Chapter]
-) -> dict[int, list[reportpage.Row]]:
-    """The report rows of every record whose notebook is a page of a thesis chapter."""
+) -> dict[int, list[verdicts.ReportRow]]:
+    """Every report row (:func:`mechlib.reporting.verdicts.all_rows`) grouped by the thesis
+    chapter its page belongs to; a record of no chapter's page is named and left out."""
     chapter_of = {page: c.number for c in chapters for page in c.pages}
-    rows: dict[int, list[reportpage.Row]] = {c.number: [] for c in chapters}
-    for path in sorted(Path(records).glob("*.json")):
-        rec = load(path)
-        if rec["notebook"] not in chapter_of:
-            print(f"bookbuild: record {path.name} belongs to no chapter of _toc.yml; not reported")
-            continue
-        rows[chapter_of[rec["notebook"]]] += [
-            reportpage.Row(rec["notebook"], r) for r in rec.get("report", [])
-        ]
-    chapter_of_artefact = {
-        verdicts.artefact_name(k, n): ch for k, n, ch, _ in verdicts.THESIS_ARTEFACTS
+    chapter_of |= {
+        page: ch
+        for page, artefact, _ in verdicts.REDRAWN
+        for k, n, ch, _ in verdicts.THESIS_ARTEFACTS
+        if verdicts.artefact_name(k, n) == artefact
     }
-    for row in verdicts.redrawn_rows():
-        number = chapter_of_artefact[row.fields["artefact"]]
-        if number in rows:
-            rows[number].append(reportpage.Row(row.page, row.fields))
+    rows: dict[int, list[verdicts.ReportRow]] = {c.number: [] for c in chapters}
+    for row in verdicts.all_rows(records):
+        number = chapter_of.get(row.page)
+        if number is None:
+            print(f"bookbuild: {row.page} is no chapter page of _toc.yml: rows not reported")
+        elif number in rows:
+            rows[number].append(row)
     return rows
 
 
 def report_markdown(
-    rows: dict[int, list[reportpage.Row]], chapters: list[reportpage.Chapter], link: Linker
+    rows: dict[int, list[verdicts.ReportRow]], chapters: list[reportpage.Chapter], link: Linker
 ) -> str:
     """The report page: rows per verdict category and a verdict per thesis artefact, then one
     table per chapter in the thesis's order."""
-    every = [verdicts.ReportRow(r.page, r.fields) for c in chapters for r in rows[c.number]]
+    every = [r for c in chapters for r in rows[c.number]]
     lines = [
         REPORT_HEADER,
         "## Summary",
         "",
-        verdicts.counts_table(verdicts.category_counts(every)),
+        verdicts.counts_table(verdicts.category_counts(every), reportpage.category_markup),
         "",
         "The verdict per thesis artefact, rolled up from these rows, is on the "
         "[first page](intro.md).",
@@ -213,6 +211,13 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
     _write(Path(book) / "report.md", report_markdown(rows, chapters, link) + footer)
     generated = Path(book) / "generated"
     generated.mkdir(parents=True, exist_ok=True)
+    # every claim's verdict, judged again from the records and checked against the word its page
+    # recorded: what the pages quote by id (the `verdict` role)
+    judged = claimlist.judge(verdicts.load_records(records))
+    _write(
+        Path(book) / verdictrole.CLAIMS_FILE,
+        json.dumps(claimlist.verdict_table(judged), indent=1, ensure_ascii=False) + "\n",
+    )
     data = bundle.write_bundle(records, generated / bundle.NAME)
     landing.write_landing(
         records,

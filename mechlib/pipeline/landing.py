@@ -2,7 +2,7 @@
 
 :func:`write_landing` writes a MyST page with what the thesis is (prose from
 :data:`THESIS_TEXT`, which states no result), one table with a verdict per thesis artefact
-(:func:`mechlib.pipeline.verdicts.rollup`), the counts per verdict category, the main findings in
+(:func:`mechlib.reporting.verdicts.rollup`), the counts per verdict category, the main findings in
 a sentence each with a link to their evidence, and the profile the book was built with.
 
 Every result the page states is read from the records: a finding (:class:`Finding`) quotes
@@ -20,8 +20,9 @@ from typing import Any
 import numpy as np
 
 from mechlib.pipeline import bundle as bundle_mod
-from mechlib.pipeline import verdicts
+from mechlib.pipeline.book import reportpage
 from mechlib.pipeline.findings import FINDINGS, Finding, Quote
+from mechlib.reporting import verdicts
 
 #: ``link(page, what, text)`` → a MyST link to the section of chapter ``page`` that shows ``what``.
 Link = Callable[[str, str, str], str]
@@ -50,8 +51,10 @@ mechanism is calibrated leg by leg, with postures chosen by an observability ind
 Tables 6–8); the thesis claims that this beats identifying all parameters at once.
 
 The thesis used ANSYS; we use SfePy, Python and open libraries. Every number in this book is
-computed when the book is built (the default build's key numbers are checked against committed
-references; timings are not). The thesis's printed values enter in two ways only: as published
+computed by the code that builds it: the finite-element runs are read from a results store that
+the same code computed at a named commit (which runs, and how a sample of them is recomputed, is
+under "This build" below), and every table, figure and number after them is computed when the book
+is built. The thesis's printed values enter in two ways only: as published
 values to compare against, and as inputs the report names — our FE model's dimensions are fitted
 to Eq 8, and Tables 2 and 4's force designs are run as printed — so agreement that follows from
 them is counted as *consistent by construction*, not as reproduction. The
@@ -128,23 +131,32 @@ def find_row(rows: Sequence[verdicts.ReportRow], spec: tuple[str, str, str]) -> 
     raise KeyError(f"landing: no report row {artefact!r} {quantity!r}… in {page}")
 
 
+#: a claim's verdict in a finding's text: ``[[ch3.iii.5r.table8]]``
+_CLAIM = re.compile(r"\[\[([\w.]+)\]\]")
+
+
 def finding_lines(
     finding: Finding, records: verdicts.Records, rows: Sequence[verdicts.ReportRow], link: Link
 ) -> list[str]:
     """The finding as a Markdown list item, or no line when its row or values are missing or its
-    row's category makes neither sentence true."""
+    row's category makes neither sentence true. A finding that rests on registered claims
+    quotes their verdicts (``[[claim id]]`` in its text) and is always stated."""
     try:
-        row = find_row(rows, finding.row)
+        row = find_row(rows, finding.row) if finding.row else None
         numbers = {name: quote(records, where) for name, where in finding.values.items()}
     except KeyError:
         return []
-    shown = row.category in finding.shown_if and finding.holds in (None, row.holds)
+    shown = row is None or (
+        row.category in finding.shown_if and finding.holds in (None, row.holds)
+    )
     title, template = (finding.title, finding.text) if shown else finding.otherwise
     if not template:
         return []
     page, what = finding.evidence
     sentence = template.format(**numbers)
-    return [f"- **{title.rstrip('.')}** ({row.category}). {sentence} "
+    sentence = _CLAIM.sub(lambda m: reportpage.verdict_markup(m.group(1)), sentence)
+    label = f" ({reportpage.category_markup(row.category)})" if row is not None else ""
+    return [f"- **{title.rstrip('.')}**{label}. {sentence} "
             f"Evidence: {link(page, what, what)}."]  # fmt: skip
 
 
@@ -160,10 +172,20 @@ def artefact_table(rows: Sequence[verdicts.ReportRow], link: Link) -> str:
         cell = link(entry["pages"][0], name, name) if entry["pages"] else name
         detail = entry["summary"].split(": ", 1)[1] if entry["rows"] else "—"
         lines.append(
-            f"| {cell} | {_escape(entry['title'])} | {_escape(entry['verdict'])} | "
-            f"{_escape(detail)} |"
+            f"| {cell} | {_escape(entry['title'])} | "
+            f"{reportpage.category_markup(entry['verdict'])} | {_mark_categories(detail)} |"
         )
     return "\n".join(lines)
+
+
+def _mark_categories(text: str) -> str:
+    """A roll-up summary with every category name in it marked (they hold verdict words)."""
+    out = _escape(text)
+    for category in sorted(verdicts.cat.CATEGORIES, key=len, reverse=True):
+        out = re.sub(
+            rf"(?<![`\w]){re.escape(category)}(?![`\w])", reportpage.category_markup(category), out
+        )
+    return out
 
 
 def counts_sentence(counts: Mapping[str, int]) -> str:
@@ -228,7 +250,7 @@ def landing_markdown(
             "",
             counts_sentence(counts),
             "",
-            verdicts.counts_table(counts),
+            verdicts.counts_table(counts, reportpage.category_markup),
             "",
             "## Main findings",
             "",

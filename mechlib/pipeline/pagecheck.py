@@ -22,8 +22,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from html.parser import HTMLParser
 from typing import Any
 
-from mechlib.pipeline import verdicts
 from mechlib.pipeline.book.browser import VOID_ELEMENTS
+from mechlib.reporting import verdicts
 
 #: Words a reader of the chapters should not meet: (what, pattern).
 JARGON: tuple[tuple[str, re.Pattern[str]], ...] = (
@@ -49,6 +49,8 @@ _FENCE = re.compile(r"^\s*(`{3,}|~{3,}|:{3,})\s*(.*)$")
 #: HTML elements whose text is not chapter prose
 _NOT_PROSE = {"script", "style", "head", "nav", "header", "footer", "pre", "code", "svg"}
 _CONTEXT = 30
+#: a MyST role around a text ({category}`thesis claim supported`): its text
+_ROLE = re.compile(r"\{\w+\}`([^`]*)`")
 
 
 def jargon_problems(lines: Iterable[tuple[int, str]], where: str) -> list[str]:
@@ -216,6 +218,7 @@ def count_table(text: str) -> dict[str, int]:
         if not line.startswith("|"):
             break
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        cells[0] = _ROLE.sub(r"\1", cells[0])  # a category marked by the book's role
         if cells[0] in verdicts.cat.CATEGORIES:
             counts[cells[0]] = int(cells[-1])
     return counts

@@ -20,7 +20,7 @@ import numpy as np
 
 from mechlib.params import check_float
 from mechlib.paths import records_dir
-from mechlib.reporting import report
+from mechlib.reporting import claimlist, claims, report
 
 
 def _plain(value: Any) -> Any:
@@ -36,6 +36,8 @@ def _plain(value: Any) -> Any:
     return value
 
 
+#: the record keys of claim verdicts: ``claims.<claim id>`` (see :meth:`Recorder.claim`)
+CLAIM_PREFIX = "claims."
 #: What a notebook may glue into its prose through :meth:`Recorder.value`: a name, or names
 #: of elements of the recorded value by their index (``{"nu_x": 0, "nu_thx": 3}``).
 Glue = str | Mapping[str, int | tuple[int, ...]]
@@ -104,7 +106,7 @@ class Recorder:
         glue : str or dict, optional
             Glue name of a scalar number, or ``{name: index}`` to glue elements of an array
             (as Python ``float``/``int``, what myst-nb formats).
-        row : report.Comparison, report.Claim or report.Computed, or a list of them
+        row : report.Comparison, report.Check, report.Computed or report.NotReproduced, or a list
             Report rows completed with this value (see :mod:`mechlib.reporting.report`).
 
         Returns
@@ -219,6 +221,31 @@ class Recorder:
             self.glued[glue] = {"key": key, "timing": True}
             self.paste(glue, value)
         return value
+
+    def claim(self, claim_id: str) -> str:
+        """Judge the registered claim ``claim_id`` (:mod:`mechlib.reporting.claimlist`) from this
+        notebook's records: its verdict word is recorded under ``claims.<claim_id>`` and its
+        report row added. Pages quote the word by id, never compose it.
+
+        Returns
+        -------
+        str
+            The verdict word ("supported", "not supported", "mixed"; "holds", "does not hold").
+
+        Raises
+        ------
+        KeyError
+            An id the registry does not hold, or a value its rule reads that was not recorded.
+        ValueError
+            A claim whose evidence another notebook records, or one judged twice.
+        """
+        spec = claimlist.claim(claim_id)
+        if spec.page != self.notebook:
+            raise ValueError(f"claim {claim_id!r} is judged on {spec.page}, not on {self.notebook}")
+        verdict = claims.evaluate(spec, {**self.values, **self.timings})
+        self.value(f"{CLAIM_PREFIX}{claim_id}", verdict.word)
+        self.report.append({k: _plain(v) for k, v in verdict.row().items()})
+        return verdict.word
 
     def save(self, folder: Path | None = None) -> Path:
         """Write ``<folder>/<notebook>.json`` deterministically and return its path."""

@@ -1,11 +1,14 @@
 """Rows of the reproduction report: published value, ours, difference, verdict.
 
-A row is built by :func:`compare_row` (numbers against the published ones), :func:`claim_row`
-(a statement checked by a computed test) or :func:`computed_row` (a number the thesis does not
-publish). Notebooks describe a row without "ours" — :class:`Comparison`, :class:`Claim`,
-:class:`Computed` — and hand it to :meth:`mechlib.reporting.records.Recorder.value`, which fills in
-the
-value it records: the number in the report is then the number checked against the references.
+A row is built by :func:`compare_row` (numbers against the published ones), :func:`check_row`
+(a statement that holds by construction or sets published values against each other, checked by a
+computed test), :func:`computed_row` (a number the thesis does not publish) or
+:func:`not_reproduced_row`. Notebooks describe a row without "ours" — :class:`Comparison`,
+:class:`Check`, :class:`Computed`, :class:`NotReproduced` — and hand it to
+:meth:`mechlib.reporting.records.Recorder.value`, which fills in the value it records: the number
+in the report is then the number checked against the references. A claim the book judges has its
+row from the claims registry (:mod:`mechlib.reporting.claims`), through
+:meth:`~mechlib.reporting.records.Recorder.claim`.
 The build wing (:mod:`mechlib.pipeline.bookbuild`) gathers the rows of every record into the book's
 report page. A verdict is never typed: it follows from the numbers and tolerances given.
 """
@@ -25,8 +28,6 @@ from mechlib.reporting import categories as cat
 REPRODUCED = "reproduced"
 WITHIN = "within tolerance"
 DIVERGES = "diverges"
-SUPPORTED = "claim supported"
-NOT_SUPPORTED = "claim not supported"
 COMPUTED = "computed (no published value)"
 #: the tolerance of a row whose values agree to the printed digits, and of an exact one
 PRINTED_DIGIT = "half a unit of the last printed digit"
@@ -147,74 +148,65 @@ def compare_row(
 
 
 _NO_DIFFERENCE = {"max_abs_diff": None, "max_rel_diff": None, "difference": None}
+#: what a check's row shows as its published value (its "ours" is evidence text, kept as written)
+CHECK_PUBLISHED = "(check)"
 
 
-def claim_row(
-    artefact: str,
-    claim: str,
-    evidence: str,
-    holds: object,
-    *,
-    source: str = cat.SOURCE_THESIS,
-    mixed: bool = False,
-    basis: str = cat.BASIS_INDEPENDENT,
+def check_row(
+    artefact: str, statement: str, evidence: str, holds: object, *, basis: str
 ) -> dict[str, Any]:
-    """A row for a statement checked by a computed test (``holds``).
+    """A row for a statement checked by a computed test that is no claim to judge: it holds by
+    construction on our model, or it sets published values against each other.
+
+    A claim the book judges — the thesis's or ours — is registered in
+    :mod:`mechlib.reporting.claimlist` and recorded with
+    :meth:`mechlib.reporting.records.Recorder.claim`, never through this row.
 
     Parameters
     ----------
-    artefact, claim, evidence : str
+    artefact, statement, evidence : str
         The artefact, the statement and what the test found (shown as written).
     holds : bool or array of bool
-        Whether the statement holds; several parts must all hold, unless ``mixed``.
-    source : {"thesis", "ours"}
-        Whose statement it is; ``"ours"`` makes the row "our finding beyond the thesis",
-        never counted with the thesis's claims.
-    mixed : bool
-        The statement has several parts (``holds`` one per part) and some holding is
-        "thesis claim mixed" rather than "not supported".
-    basis : {"independent", "construction"}
-        ``"construction"``: the statement holds by construction on our model (e.g. second-order
-        terms vanishing on a linear model), so holding is "consistent by construction", not
-        support of the thesis's claim; failing is "diverges" (our computation is at fault), not
-        "thesis claim not supported".
+        Whether the statement holds; several parts must all hold.
+    basis : {"construction", "thesis-inconsistency"}
+        ``"construction"``: it holds by construction (holding is "consistent by construction";
+        failing is "diverges": our computation is at fault). ``"thesis-inconsistency"``: published
+        values are set against each other (holding is "consistent inside the thesis", failing an
+        "inconsistency inside the thesis").
 
     Raises
     ------
     ValueError
-        For an unknown ``source`` or ``basis``.
+        For any other ``basis``.
     """
-    cat.check_kinds(basis, source)
-    if basis == cat.BASIS_THESIS:
+    if basis not in (cat.BASIS_CONSTRUCTION, cat.BASIS_THESIS):
         raise ValueError(
-            f"{artefact}: basis of a claim must be {cat.BASIS_INDEPENDENT!r} or "
-            f"{cat.BASIS_CONSTRUCTION!r}, got {basis!r}"
+            f"{artefact}: a check's basis is {cat.BASIS_CONSTRUCTION!r} or {cat.BASIS_THESIS!r}, "
+            f"got {basis!r} (a claim to judge is registered in mechlib.reporting.claimlist and "
+            "recorded with Recorder.claim)"
         )
     parts = np.atleast_1d(np.asarray(holds, dtype=bool))
     n_hold = int(parts.sum())
     if n_hold == parts.size:
-        verdict, category = SUPPORTED, cat.CAT_SUPPORTED
-        if basis == cat.BASIS_CONSTRUCTION:
-            category = cat.CAT_CONSTRUCTION
+        category = (
+            cat.CAT_CONSTRUCTION if basis == cat.BASIS_CONSTRUCTION else cat.CAT_CONSISTENT_THESIS
+        )
+        cause = ""
     elif basis == cat.BASIS_CONSTRUCTION:
-        # what should hold by construction on our model does not: our computation is at fault,
-        # not the thesis's claim
-        verdict, category = f"{DIVERGES}: fails although it holds by construction", cat.CAT_DIVERGES
-    elif mixed and n_hold:
-        verdict = f"{NOT_SUPPORTED} (mixed: {n_hold} of {parts.size} parts hold)"
-        category = cat.CAT_MIXED
+        category, cause = cat.CAT_DIVERGES, "fails although it holds by construction"
     else:
-        verdict, category = NOT_SUPPORTED, cat.CAT_NOT_SUPPORTED
+        category, cause = cat.CAT_INCONSISTENT, "published values contradict each other"
     return {
         "artefact": artefact,
-        "quantity": claim,
-        "published": "(claim)",
+        "quantity": statement,
+        "published": CHECK_PUBLISHED,
         "ours": evidence,
         **_NO_DIFFERENCE,
-        "verdict": verdict,
-        "category": cat.CAT_OURS if source == cat.SOURCE_OURS else category,
-        "source": source,
+        "verdict": f"{category}: {cause}" if cause else category,
+        "category": category,
+        "source": cat.SOURCE_THESIS,
         "basis": basis,
+        "cause": cause,
         "n_values": int(parts.size),
         "n_agree": n_hold,
         "difference_text": "—",
@@ -270,6 +262,8 @@ def not_reproduced_row(
         "category": cat.CAT_NOT_REPRODUCED,
         "source": cat.SOURCE_THESIS,
         "cause": tried,
+        "n_values": int(np.size(published)),
+        "n_agree": 0,
         "difference_text": "—",
     }
 
@@ -325,19 +319,16 @@ class Comparison:
 
 
 @dataclass(frozen=True)
-class Claim:
-    """A :func:`claim_row` waiting for its test: the recorded value says whether it holds."""
+class Check:
+    """A :func:`check_row` waiting for its test: the recorded value says whether it holds."""
 
     artefact: str
-    claim: str
+    statement: str
     evidence: str
-    source: str = cat.SOURCE_THESIS
-    mixed: bool = False
-    basis: str = cat.BASIS_INDEPENDENT
+    basis: str
 
     def row(self, holds: object) -> dict[str, Any]:
-        """The row for ``holds``: a bool, or booleans that must all be true (some, if ``mixed``:
-        see :func:`claim_row`).
+        """The row for ``holds``: a bool, or booleans that must all be true.
 
         Raises
         ------
@@ -347,16 +338,8 @@ class Claim:
         """
         arr = np.asarray(holds)
         if arr.dtype != bool:
-            raise TypeError(f"{self.artefact}: a claim holds or not, got {holds!r}")
-        return claim_row(
-            self.artefact,
-            self.claim,
-            self.evidence,
-            arr,
-            source=self.source,
-            mixed=self.mixed,
-            basis=self.basis,
-        )
+            raise TypeError(f"{self.artefact}: a check holds or not, got {holds!r}")
+        return check_row(self.artefact, self.statement, self.evidence, arr, basis=self.basis)
 
 
 @dataclass(frozen=True)
@@ -388,4 +371,4 @@ class NotReproduced:
 
 
 #: A report row waiting for the recorded value it reports on.
-RowSpec = Comparison | Claim | Computed | NotReproduced
+RowSpec = Comparison | Check | Computed | NotReproduced

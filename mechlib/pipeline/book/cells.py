@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from mechlib.pipeline.book import figures
-from mechlib.pipeline.book.artefacts import Section, parse
+from mechlib.reporting.artefacts import Section, parse
 
 #: Tags that show a reader-facing cell as written (papermill's parameter cells).
 KEEP_VISIBLE = frozenset({"parameters", "injected-parameters"})

@@ -3,7 +3,7 @@ protocol), each step linked to the section of the book that carries it out.
 
 The steps paraphrase the thesis (sec. 2.5 for Fig 1, sec. 3.6 for Fig 9). Where each step is
 implemented is given as ``(page, artefact or heading text)``, resolved against the chapter pages'
-headings when the book is built (:func:`~mechlib.pipeline.book.artefacts.find_section`), and as
+headings when the book is built (:func:`~mechlib.reporting.artefacts.find_section`), and as
 the mechlib functions that do the work (tested to exist).
 """
 

@@ -13,12 +13,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from mechlib.pipeline import verdicts
-from mechlib.pipeline.book import artefacts
-from mechlib.reporting import report
+from mechlib.reporting import artefacts, report, verdicts
+from mechlib.reporting import categories as cat
+from mechlib.reporting.claims import CLAIM_PUBLISHED
 
-#: what a claim row shows as its published value (its "ours" is evidence text, kept as written)
-CLAIM = report.claim_row("", "", "", True)["published"]
+#: what a claim's or a check's row shows as its published value (its "ours" is evidence text,
+#: kept as written)
+STATEMENT_ROWS = (CLAIM_PUBLISHED, report.CHECK_PUBLISHED)
 #: significant digits of our values shown in the table
 VALUE_DIGITS = 4
 _NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])")
@@ -33,12 +34,35 @@ class Chapter:
     pages: tuple[str, ...]
 
 
-@dataclass(frozen=True)
-class Row:
-    """A report row with the page (notebook name) that recorded it."""
+#: the report row of a notebook (:class:`mechlib.reporting.verdicts.ReportRow`)
+Row = verdicts.ReportRow
+#: the book's roles (:mod:`mechlib.pipeline.book.verdictrole`) that set a verdict category's name
+#: and a claim's verdict word apart from prose, so that the page check can tell them from it
+CATEGORY_ROLE, VERDICT_ROLE = "category", "verdict"
 
-    page: str
-    fields: dict[str, Any]
+
+def category_markup(category: str) -> str:
+    """A verdict category's name as the book marks it (checked apart from prose)."""
+    return f"{{{CATEGORY_ROLE}}}`{category}`"
+
+
+def verdict_markup(claim_id: str) -> str:
+    """A claim's verdict word, quoted from the claims registry by id."""
+    return f"{{{VERDICT_ROLE}}}`{claim_id}`"
+
+
+def verdict_cell(fields: dict[str, Any]) -> str:
+    """The Verdict cell of a report row in MyST: its category (and the claim's verdict word by id,
+    for a claim), then its cause or the tolerance its agreement met."""
+    cells = verdicts.report_cells(fields)
+    category = verdicts.row_category(fields)
+    detail = cells["verdict"].removeprefix(category).removeprefix(": ")
+    if fields.get("claim"):
+        head = "thesis claim" if category in cat.CLAIM_CATEGORIES else category
+        marked = f"{category_markup(head)}: {verdict_markup(fields['claim'])}"
+    else:
+        marked = category_markup(category)
+    return f"{marked}: {_escape(detail)}" if detail else marked
 
 
 def fmt_number(x: float, digits: int = VALUE_DIGITS) -> str:
@@ -97,14 +121,14 @@ def chapter_table(rows: Sequence[Row], chapter: Chapter, link: Callable[[str, st
     for _, row in sorted(enumerate(rows), key=key):
         f = row.fields
         cells = verdicts.report_cells(f)
-        ours = cells["ours"] if f["published"] == CLAIM else shorten_numbers(cells["ours"])
+        ours = cells["ours"] if f["published"] in STATEMENT_ROWS else shorten_numbers(cells["ours"])
         lines += [
             f"* - {link(row.page, f['artefact'])}",
             f"  - {_escape(f['quantity'])}",
             f"  - {_escape(cells['published'])}",
             f"  - {_escape(ours)}",
             f"  - {_escape(cells['difference'])}",
-            f"  - {_escape(cells['verdict'])}",
+            f"  - {verdict_cell(f)}",
         ]
     lines.append("```")
     return "\n".join(lines)

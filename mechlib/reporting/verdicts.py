@@ -12,14 +12,13 @@ here once.
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from mechlib.pipeline.book import artefacts
+from mechlib.reporting import artefacts
 from mechlib.reporting import categories as cat
-from mechlib.reporting import report
 
 #: Every numbered artefact of the thesis that the book reproduces, with its chapter and a short
 #: title after its caption (``shared/paper/thesis.md``: Tables 1–5, Figs 1–8 and Eqs 6–11 in
@@ -91,15 +90,6 @@ COUNT_GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 #: Header of the counts table; :func:`mechlib.pipeline.pagecheck.count_table` finds it by this.
 COUNTS_HEADER = "| Verdict | Counted among | Rows |"
-#: Rows recorded before rows carried a category: their verdict text's group (legacy records only).
-_LEGACY = (
-    (report.WITHIN, cat.CAT_REPRODUCED),
-    (report.REPRODUCED, cat.CAT_REPRODUCED),
-    (report.DIVERGES, cat.CAT_DIVERGES),
-    (report.NOT_SUPPORTED, cat.CAT_NOT_SUPPORTED),
-    (report.SUPPORTED, cat.CAT_SUPPORTED),
-    (report.COMPUTED, cat.CAT_COMPUTED),
-)
 
 
 @dataclass(frozen=True)
@@ -126,34 +116,27 @@ class ReportRow:
 
 
 def row_category(fields: Mapping[str, Any]) -> str:
-    """A row's ``category`` field; for a row recorded before that field existed, the category
-    of its verdict group (such a row knows no basis or source: it cannot say "by construction").
+    """A row's ``category`` field.
 
     Raises
     ------
     ValueError
-        For a category or verdict that :mod:`mechlib.reporting.report` does not produce.
+        For a row without a category, or a category :mod:`mechlib.reporting.categories` does not
+        define.
     """
-    if "category" in fields:
-        if fields["category"] not in cat.CATEGORIES:
-            raise ValueError(f"unknown category {fields['category']!r}; known: {cat.CATEGORIES}")
-        return fields["category"]
-    verdict = fields["verdict"]
-    for prefix, category in _LEGACY:
-        if verdict == prefix or verdict.startswith((prefix + " ", prefix + ":")):
-            return category
-    raise ValueError(f"unknown verdict {verdict!r} in a row without a category")
+    category = fields.get("category")
+    if category not in cat.CATEGORIES:
+        raise ValueError(f"unknown category {category!r}; known: {cat.CATEGORIES}")
+    return category
 
 
 Records = Mapping[str, Mapping[str, Any]]
 
 
 def row_holds(fields: Mapping[str, Any]) -> bool:
-    """Whether all of a row's values agree (a comparison) or its claim holds: from its counts
-    (``n_agree`` of ``n_values``), or for a row recorded before them, from its verdict group."""
-    if "n_values" in fields and "n_agree" in fields:
-        return fields["n_agree"] == fields["n_values"]
-    return fields["verdict"].startswith((report.REPRODUCED, report.WITHIN, report.SUPPORTED))
+    """Whether all of a row's values agree (a comparison) or its claim holds (``n_agree`` of
+    ``n_values``; a row without counts, such as a computed one, holds)."""
+    return fields.get("n_agree") == fields.get("n_values")
 
 
 def load_records(records: Records | Path) -> dict[str, Mapping[str, Any]]:
@@ -246,7 +229,7 @@ def category_counts(rows: Iterable[ReportRow]) -> dict[str, int]:
     return counts
 
 
-def counts_table(counts: Mapping[str, int]) -> str:
+def counts_table(counts: Mapping[str, int], mark: Callable[[str], str] = str) -> str:
     """The counts per category as a Markdown table (the landing and the report page show it).
 
     Raises
@@ -258,7 +241,7 @@ def counts_table(counts: Mapping[str, int]) -> str:
         raise ValueError(f"counts must name every category {cat.CATEGORIES}, got {sorted(counts)}")
     lines = [COUNTS_HEADER, "|---|---|---:|"]
     for group, members in COUNT_GROUPS:
-        lines += [f"| {category} | {group} | {counts[category]} |" for category in members]
+        lines += [f"| {mark(category)} | {group} | {counts[category]} |" for category in members]
     lines.append(f"| all rows | | {sum(counts.values())} |")
     return "\n".join(lines)
 
@@ -328,21 +311,16 @@ def report_cells(fields: Mapping[str, Any]) -> dict[str, str]:
     """The Published, Ours, Difference and Verdict cells of a report row, as plain text.
 
     The Verdict cell is the row's category, then its cause (a divergence) or the tolerance its
-    agreement met; the Difference cell is :func:`mechlib.reporting.categories.difference_text`'s (a
-    row
-    recorded before it existed shows its largest absolute difference, never a relative one).
+    agreement met; the Difference cell is
+    :func:`mechlib.reporting.categories.difference_text`'s.
     """
     category = row_category(fields)
     detail = fields.get("cause") or ""
     if not detail and fields.get("tolerance") and row_holds(fields):
         detail = f"within {fields['tolerance']}"
-    difference = fields.get("difference_text")
-    if difference is None:
-        diff = fields.get("max_abs_diff")
-        difference = "—" if diff is None else f"{diff:.{cat.DIFF_DIGITS}g}"
     return {
         "published": str(fields["published"]),
         "ours": str(fields["ours"]),
-        "difference": difference,
+        "difference": fields["difference_text"],
         "verdict": f"{category}: {detail}" if detail else category,
     }

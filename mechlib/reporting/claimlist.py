@@ -1,0 +1,91 @@
+"""Every claim the book judges — the registry of :mod:`mechlib.reporting.claims` — by id.
+
+The claims of the thesis are in :mod:`mechlib.reporting.thesisclaims`, findings of ours in
+:mod:`mechlib.reporting.ourclaims`; this module gathers them, gives one by id, and judges them
+again from a build's records for the book's pages (:func:`judge`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from mechlib.reporting import claims
+from mechlib.reporting.claims import ClaimSpec
+from mechlib.reporting.ourclaims import our_claims
+from mechlib.reporting.thesisclaims import CONTROL_PERIOD_US, thesis_claims
+
+__all__ = ["CLAIMS", "CONTROL_PERIOD_US", "claim", "for_page", "judge", "verdict_table"]
+
+#: every claim the book judges, by id, in the order the report lists them
+CLAIMS: dict[str, ClaimSpec] = {c.id: c for c in [*thesis_claims(), *our_claims()]}
+
+
+def claim(claim_id: str) -> ClaimSpec:
+    """The registered claim ``claim_id``.
+
+    Raises
+    ------
+    KeyError
+        For an id the registry does not hold, naming the known ones of its page prefix.
+    """
+    if claim_id not in CLAIMS:
+        near = [c for c in CLAIMS if c.split(".")[0] == claim_id.split(".")[0]]
+        raise KeyError(f"no registered claim {claim_id!r}; registered: {near or list(CLAIMS)}")
+    return CLAIMS[claim_id]
+
+
+def for_page(page: str) -> list[ClaimSpec]:
+    """The claims whose evidence the notebook ``page`` records."""
+    return [c for c in CLAIMS.values() if c.page == page]
+
+
+def judge(records: Mapping[str, Mapping[str, Any]]) -> dict[str, claims.Verdict]:
+    """Every registered claim that its page judged (recorded ``claims.<id>``), judged again from
+    that record's values (and timings) and checked against the verdict word the page recorded.
+
+    Parameters
+    ----------
+    records : mapping
+        ``{notebook: record}`` as :class:`mechlib.reporting.records.Recorder` saves them.
+
+    Raises
+    ------
+    ValueError
+        When a page recorded another verdict word than its values give (naming the page, the
+        claim and both words).
+    """
+    judged = {}
+    for spec in CLAIMS.values():
+        record = records.get(spec.page)
+        if record is None:
+            continue
+        values = {**record.get("values", {}), **record.get("timings", {})}
+        key = f"claims.{spec.id}"
+        if key not in values:  # not judged in this run (e.g. its non-linear runs were skipped)
+            continue
+        verdict = claims.evaluate(spec, values)
+        recorded = values[key]["value"]
+        if recorded != verdict.word:
+            raise ValueError(
+                f"{spec.page} recorded {recorded!r} for claim {spec.id!r}, its values give "
+                f"{verdict.word!r}"
+            )
+        judged[spec.id] = verdict
+    return judged
+
+
+def verdict_table(judged: Mapping[str, claims.Verdict]) -> dict[str, dict[str, str]]:
+    """What the book's pages quote of each judged claim (``verdict`` role): its word, statement,
+    setting, source, where and page — JSON-ready."""
+    return {
+        cid: {
+            "word": v.word,
+            "statement": v.spec.statement,
+            "setting": v.setting,
+            "source": v.spec.source,
+            "where": v.spec.where,
+            "page": v.spec.page,
+        }
+        for cid, v in judged.items()
+    }

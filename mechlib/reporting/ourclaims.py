@@ -1,0 +1,258 @@
+"""Findings of ours the book judges (never counted with the thesis's claims).
+
+Chapter 2's pages test readings of the thesis's tables and the non-linear meta-models; "Beyond the
+5R" tests the thesis's three claims on two other mechanisms, a planar 3-RRR and a 6-UPS (the 5R's
+are the thesis's own claims: :mod:`mechlib.reporting.thesisclaims`). Registered in
+:mod:`mechlib.reporting.claimlist`.
+"""
+
+from __future__ import annotations
+
+from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR
+from mechlib.reporting import categories as cat
+from mechlib.reporting.claims import (
+    ClaimSpec,
+    at_least,
+    exceeds,
+    greater,
+    is_true,
+    paired,
+    within,
+)
+
+OURS = cat.SOURCE_OURS
+VX, FB, B5R = "virtual_experiments", "fivebar_identification", "beyond_5r"
+FAMILY, META = "nonlinear_family", "nonlinear_metamodels"
+
+#: the mechanisms of "Beyond the 5R" beside the 5R: record slug and index in its catalogue order
+OTHER_MECHANISMS = (("3rrr", "3-RRR", 1), ("6ups", "6-UPS", 2))
+
+
+def _beyond_5r() -> list[ClaimSpec]:
+    specs = [
+        ClaimSpec(
+            "ours.b5r.o1_index",
+            OURS,
+            "Beyond the 5R (pose selection index)",
+            "poses chosen by the thesis's O1 (Eq 18) give a smaller pose error than poses chosen "
+            "by O3, on each of the 5R, the 3-RRR and the 6-UPS",
+            B5R,
+            (is_true("O1 against O3", "indices.o1_best", "mechanisms where O1 wins"),),
+        ),
+        ClaimSpec(
+            "ours.b5r.curves",
+            OURS,
+            "Beyond the 5R (noise and budget curves)",
+            "D&C is better than the traditional identification for some noise level or pose budget",
+            B5R,
+            (
+                is_true(
+                    "every cell of the noise and budget curves",
+                    "curves.dc_wins_any",
+                    "some cell where D&C wins",
+                ),
+            ),
+        ),
+    ]
+    for slug, name, j in OTHER_MECHANISMS:
+        for budget, label in (("thesis", "thesis budget"), ("matched", "matched budget")):
+            k = 0 if budget == "thesis" else 1
+            specs.append(
+                ClaimSpec(
+                    f"ours.b5r.{slug}.iii.{budget}",
+                    OURS,
+                    f"Beyond the 5R ({name})",
+                    f"(iii) on the {name}, divide and conquer gives the better calibration",
+                    B5R,
+                    (
+                        paired(
+                            "workspace RMS position error",
+                            f"{slug}_{budget}.share_dc_better",
+                            f"{slug}_{budget}.p_value",
+                        ),
+                    ),
+                    f"{label}: {{n:.0f}} shared poses",
+                    {"n": ("budgets.shared", (j, k))},
+                )
+            )
+        specs += [
+            ClaimSpec(
+                f"ours.b5r.{slug}.i",
+                OURS,
+                f"Beyond the 5R ({name})",
+                f"(i) on the {name}, inverting D&C's normal matrices costs fewer flops",
+                B5R,
+                (
+                    exceeds(
+                        "normal-matrix inversion flops, traditional / D&C",
+                        ("cost.flop_ratio", j),
+                        1.0,
+                        "ratio",
+                    ),
+                ),
+            ),
+            ClaimSpec(
+                f"ours.b5r.{slug}.ii",
+                OURS,
+                f"Beyond the 5R ({name})",
+                f"(ii) on the {name}, D&C's identification matrices are better conditioned",
+                B5R,
+                (
+                    greater(
+                        "inverse condition number of the column-scaled identification matrix",
+                        ("cost.conditioning", (j, 0)),
+                        ("cost.conditioning", (j, 1)),
+                        ("D&C's worst leg", "the traditional total matrix"),
+                    ),
+                ),
+            ),
+        ]
+    return specs
+
+
+def _ours_chapter2() -> list[ClaimSpec]:
+    return [
+        ClaimSpec(
+            "ours.table5_linear_analysis",
+            OURS,
+            "Table 5",
+            "the published errors of Table 5 imply a linear FE analysis, not a geometrically "
+            "non-linear one",
+            VX,
+            (
+                at_least(
+                    "our non-linear departure over the published MAXABS, both as shares of "
+                    "the range, in every component",
+                    "table5.nonlinear.over_published",
+                    DISTINCT_ERROR_FACTOR,
+                    "times",
+                ),
+            ),
+        ),
+        ClaimSpec(
+            "ours.table4_not_nonlinear",
+            OURS,
+            "Table 4",
+            "the published Table 4 responses are not those of a geometrically non-linear "
+            "analysis of a part with Eq 8's compliance",
+            VX,
+            (
+                at_least(
+                    "our non-linear departure over Table 4's from Eq 8, in the component "
+                    "where it is largest",
+                    "nl_designs.ours_over_table4",
+                    DISTINCT_ERROR_FACTOR,
+                    "times",
+                    "largest",
+                    reduce="max",
+                ),
+            ),
+        ),
+        ClaimSpec(
+            "ours.elastica",
+            OURS,
+            "Beyond the thesis: solver check",
+            "the total-Lagrangian solver reproduces the elastica of a slender cantilever within "
+            "its mesh study's tolerance",
+            VX,
+            (
+                is_true(
+                    "tip deflection, end shortening and tip rotation on the finest mesh",
+                    "elastica.within_tolerance",
+                    "within tolerance",
+                ),
+            ),
+        ),
+        ClaimSpec(
+            "ours.family_linear_analysis",
+            OURS,
+            "Table 5",
+            "across the members of the Eq 8 family solved, the published errors of Table 5 are "
+            "those of a linear analysis",
+            FAMILY,
+            (
+                is_true(
+                    "every member's departure at least 100 times the published MAXABS",
+                    "family.published_errors_imply_linear_analysis",
+                    "test",
+                ),
+            ),
+        ),
+        ClaimSpec(
+            "ours.meta.some_within_budget",
+            OURS,
+            "Beyond the thesis: meta-models of the non-linear HexFlex",
+            "one of the compared meta-models stays within the accuracy budget at ±1 N on held-out "
+            "non-linear runs",
+            META,
+            (
+                within(
+                    "the best compared model",
+                    ("compare.worst_pct", "min"),
+                    "parameters.budget_pct",
+                    "% of range",
+                    "worst error",
+                ),
+            ),
+            "budget {b:g} % of each pose component's range, {n:.0f} held-out runs",
+            {"b": "parameters.budget_pct", "n": "parameters.validation_runs"},
+        ),
+        ClaimSpec(
+            "ours.meta.thesis_method",
+            OURS,
+            "Beyond the thesis: meta-models of the non-linear HexFlex",
+            "the thesis's method (linear S_T from Table 4's design) stays within the accuracy "
+            "budget at ±1 N when the runs are non-linear",
+            META,
+            (
+                within(
+                    "linear S_T fitted to the non-linear Table 4 runs",
+                    ("compare.worst_pct", 0),
+                    "parameters.budget_pct",
+                    "% of range",
+                    "worst error",
+                ),
+            ),
+            "budget {b:g} % of each pose component's range, {n:.0f} held-out runs",
+            {"b": "parameters.budget_pct", "n": "parameters.validation_runs"},
+        ),
+        ClaimSpec(
+            "ours.meta.realtime",
+            OURS,
+            "Beyond the thesis: meta-models of the non-linear HexFlex",
+            "the distilled polynomial stays within its accuracy goal at ±1 N on held-out "
+            "non-linear runs",
+            META,
+            (
+                within(
+                    "the distilled polynomial",
+                    "realtime.best.worst_pct",
+                    ("parameters.goals", 0),
+                    "% of range",
+                    "worst error",
+                ),
+            ),
+            "goal {g:g} % of each pose component's range, {n:.0f} held-out runs",
+            {"g": ("parameters.goals", 0), "n": "parameters.validation_runs"},
+        ),
+        ClaimSpec(
+            "ours.5r.sensitivity",
+            OURS,
+            "Figs 13–14 (sensitivity)",
+            "divide and conquer is better than the traditional identification for other noise "
+            "levels and posture counts",
+            FB,
+            (
+                is_true(
+                    "every cell of the sweep",
+                    "sensitivity.dc_better_in_every_cell",
+                    "D&C better in more than half the trials",
+                ),
+            ),
+        ),
+    ]
+
+
+def our_claims() -> list[ClaimSpec]:
+    """Our findings, chapter 2's pages, the 5R's sensitivity, then "Beyond the 5R"."""
+    return [*_ours_chapter2(), *_beyond_5r()]

@@ -1,0 +1,137 @@
+"""The claims registry: verdict rules, the recorder's claim, the build's judgement, page checks."""
+
+from __future__ import annotations
+
+import pytest
+
+from mechlib.pipeline import chapters
+from mechlib.pipeline.book import claimcheck, verdictrole
+from mechlib.reporting import categories as cat
+from mechlib.reporting import claimlist, claims, thesisclaims
+from mechlib.reporting.records import Recorder
+
+
+def _spec(source: str = "thesis") -> claims.ClaimSpec:
+    return claims.ClaimSpec(
+        "t.claim",
+        source,
+        "Table 5",
+        "the model is accurate",
+        "nb",
+        (
+            claims.with_construction(claims.at_most("linear", "lin_pct", 1.0, "%")),
+            claims.at_most("non-linear", "nl_pct", 1.0, "%"),
+        ),
+        "{n:.0f} runs",
+        {"n": "runs"},
+    )
+
+
+def _values(lin: float, nl: float) -> dict:
+    return {"lin_pct": {"value": [lin, 0.1]}, "nl_pct": {"value": nl}, "runs": {"value": 40}}
+
+
+@pytest.mark.parametrize(
+    ("source", "holds", "word"),
+    [
+        ("thesis", [True, True], "supported"),
+        ("thesis", [False, False], "not supported"),
+        ("thesis", [True, False], "mixed"),
+        ("ours", [True], "holds"),
+        ("ours", [False], "does not hold"),
+        ("ours", [False, True], "mixed"),
+    ],
+)
+def test_the_verdict_word_follows_the_parts(source: str, holds: list[bool], word: str) -> None:
+    assert claims.verdict_word(source, holds) == word
+
+
+def test_a_claim_whose_evidence_splits_is_mixed_and_names_its_parts() -> None:
+    v = claims.evaluate(_spec(), _values(0.5, 41.9))
+    assert (v.word, v.holds, v.setting) == ("mixed", (True, False), "40 runs")
+    assert v.category == cat.CAT_MIXED
+    assert "linear (by construction): largest 0.5 % (at most 1 %) (holds)" in v.evidence
+    assert "non-linear: largest 41.9 % (at most 1 %) (fails)" in v.evidence
+    row = v.row()
+    assert row["claim"] == "t.claim" and row["quantity"].endswith("— 40 runs")
+    assert (row["n_values"], row["n_agree"]) == (2, 1)
+    assert claims.evaluate(_spec(), _values(0.5, 0.9)).word == "supported"
+    assert claims.evaluate(_spec("ours"), _values(2.0, 3.0)).category == cat.CAT_OURS
+
+
+def test_a_value_the_rule_reads_must_have_been_recorded() -> None:
+    with pytest.raises(KeyError, match=r"t\.claim.*nl_pct"):
+        claims.evaluate(_spec(), {"lin_pct": {"value": 0.1}, "runs": {"value": 3}})
+
+
+def test_paired_needs_a_majority_and_a_significant_test() -> None:
+    test = claims.paired("workspace", "s", "p")
+    assert test.rule(0.6, 0.01) and not test.rule(0.6, 0.2) and not test.rule(0.4, 1e-9)
+    assert (
+        test.describe(0.24, 8.4e-18)
+        == "D&C better in 24 % of the paired trials, Wilcoxon p = 8.4e-18"
+    )
+
+
+def test_the_recorder_records_the_word_and_the_row_of_its_own_claims_only() -> None:
+    rec = Recorder("virtual_experiments", paste=lambda name, value: None)
+    rec.timing("latency.st_forward_us", 0.8)
+    assert rec.claim("ch2.realtime") == "supported"
+    assert rec.values["claims.ch2.realtime"]["value"] == "supported"
+    assert rec.report[-1]["claim"] == "ch2.realtime"
+    assert rec.report[-1]["category"] == cat.CAT_SUPPORTED
+    with pytest.raises(ValueError, match="already recorded"):
+        rec.claim("ch2.realtime")
+    with pytest.raises(ValueError, match="judged on fivebar_identification"):
+        rec.claim("ch3.iii.5r.table8")
+    with pytest.raises(KeyError, match="no registered claim"):
+        rec.claim("ch2.nonsense")
+
+
+def test_the_build_judges_again_and_refuses_a_word_its_values_do_not_give() -> None:
+    record = {
+        "values": {"claims.ch2.realtime": {"value": "supported"}},
+        "timings": {"latency.st_forward_us": 0.8},
+    }
+    judged = claimlist.judge({"virtual_experiments": record})
+    assert judged["ch2.realtime"].word == "supported"
+    assert claimlist.verdict_table(judged)["ch2.realtime"]["page"] == "virtual_experiments"
+    record["timings"]["latency.st_forward_us"] = 500.0
+    with pytest.raises(ValueError, match=r"recorded 'supported' for claim 'ch2\.realtime'"):
+        claimlist.judge({"virtual_experiments": record})
+
+
+def test_the_registry_judges_each_claim_on_a_chapter_and_chapter_3_at_every_budget() -> None:
+    for spec in claimlist.CLAIMS.values():
+        assert spec.page in chapters.CHAPTERS, spec.id
+    for part in ("i", "ii", "iii"):
+        for budget, _ in thesisclaims.BUDGETS_5R:
+            assert claimlist.claim(f"ch3.{part}.5r.{budget}").source == cat.SOURCE_THESIS
+    assert all(c.source == cat.SOURCE_OURS for c in claimlist.CLAIMS.values() if ".b5r." in c.id)
+    classes = [verdictrole.claim_class(c) for c in claimlist.CLAIMS]
+    assert len(set(classes)) == len(classes)  # one HTML class per claim
+
+
+def _span(claim_id: str, word: str) -> str:
+    return f'<span class="claim-verdict {verdictrole.claim_class(claim_id)}">{word}</span>'
+
+
+def test_the_page_check_names_both_pages_of_a_claim_read_two_ways() -> None:
+    judged = {"ch2.eq6": {"word": "mixed"}}
+    a = f"<p>Eq 6: {_span('ch2.eq6', 'mixed')}.</p>"
+    b = f"<p>Eq 6: {_span('ch2.eq6', 'supported')}.</p>"
+    assert claimcheck.claim_problems({"a.html": a, "c.html": a}, judged) == []
+    problems = claimcheck.claim_problems({"a.html": a, "b.html": b}, judged)
+    assert any("'mixed' on a.html and 'supported' on b.html" in p for p in problems)
+    assert any("b.html" in p and "this build judged 'mixed'" in p for p in problems)
+
+
+def test_the_page_check_finds_verdict_words_outside_a_quoted_claim() -> None:
+    page = (
+        '<p>Claim (iii) does not hold here. <span class="verdict-category">thesis claim '
+        "supported</span></p><pre>holds = True</pre>"
+    )
+    problems = claimcheck.stray_words(page, "x.html")
+    assert len(problems) == 1 and "'does not hold'" in problems[0] and "x.html:1" in problems[0]
+    unknown = claimcheck.claim_problems({"x.html": _span("ch9.none", "mixed")}, {})
+    assert "a verdict of no registered claim" in unknown[0]
