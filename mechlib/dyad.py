@@ -1,12 +1,12 @@
 """The RR dyad of a planar leg (the 5R's leg, thesis Eqs 20–23): its reach, inverse kinematics,
 joint reading and identification Jacobian, without per-call validation.
 
-The one home of these formulas: the 5R chapter (:mod:`mechlib.fivebar.kinematics`,
-:mod:`mechlib.fivebar.identification`, which check their input first) and the calibration core's
-instances (:mod:`mechlib.mechanisms.fivebar5r`, :mod:`mechlib.mechanisms.rrr3`, whose
-:class:`mechlib.calibration.mechanism.Leg` checks the parameters once) call them. ``points`` is a
-float array (N, 2), the parameters ``φ = [l, L, Ax, Ay, k, γ]`` (Eq 21) are valid and ``mode``
-(the working mode, the elbow side) is ±1; an unreachable point still raises.
+The one home of these formulas: the 5R chapter (:mod:`mechlib.fivebar.kinematics`, which checks
+its input first) and the calibration core's instances (:mod:`mechlib.fivebar.mechanism`,
+:mod:`mechlib.mechanisms.rrr3`, whose :class:`mechlib.calibration.mechanism.Leg` checks the
+parameters once) call them. ``points`` is a float array (N, 2), the parameters
+``φ = [l, L, Ax, Ay, k, γ]`` (Eq 21) are valid and ``mode`` (the working mode, the elbow side) is
+±1; an unreachable point still raises.
 """
 
 from __future__ import annotations

@@ -16,8 +16,8 @@ import pytest
 
 from mechlib.paths import REPO_ROOT, records_dir
 from mechlib.pipeline import bundle, pagecheck
-from mechlib.pipeline.book import figures, htmlcheck
-from mechlib.reporting import verdicts
+from mechlib.pipeline.book import claimcheck, figures, htmlcheck, verdictrole
+from mechlib.reporting import claimlist, verdicts
 
 HTML = REPO_ROOT / "book" / "_build" / "html"
 
@@ -139,3 +139,22 @@ def test_the_data_bundle_is_linked_and_holds_every_record(html_root: Path) -> No
             assert f"records/{record.name}" in names, record.name
             assert archive.read(f"records/{record.name}") == record.read_bytes()
     assert {"thesis/table2_printed.csv", "thesis/eq8_S_T.csv", "thesis/table7.csv"} <= names
+
+
+def test_every_claim_reads_one_verdict_on_every_page_and_no_verdict_word_stands_alone(
+    html_root: Path,
+) -> None:
+    judged = json.loads((REPO_ROOT / "book" / verdictrole.CLAIMS_FILE).read_text())
+    # a build with the default parameters judges every claim of the registry
+    assert sorted(judged) == sorted(claimlist.CLAIMS)
+    pages = {
+        str(page.relative_to(html_root)): page.read_text()
+        for page in sorted(html_root.rglob("*.html"))
+        if page.relative_to(html_root).parts[0] not in ("_static", "_sources", "_images")
+    }
+    problems = claimcheck.claim_problems(pages, judged)
+    assert problems == [], "\n".join(problems)
+    # the thesis's claims are quoted on their own page and in the report
+    for claim_id, claim in judged.items():
+        for page in (f"chapters/{claim['page']}.html", "report.html"):
+            assert verdictrole.claim_class(claim_id) in pages[page], (claim_id, page)

@@ -1,5 +1,6 @@
 """The leg-wise calibration core on the 5R instance: identification, identifiability, selection,
-budgets, the Monte Carlo and the refusals of bad input."""
+budgets, the Monte Carlo and the refusals of bad input (the core's options — solvers, failed
+trials, noise streams, budgets, sweeps — in tests/test_calibration_montecarlo.py)."""
 
 import numpy as np
 import pytest
@@ -8,29 +9,28 @@ from mechlib import dyad
 from mechlib.calibration import cost
 from mechlib.calibration import identify as ci
 from mechlib.calibration import mechanism as cm
+from mechlib.calibration import montecarlo as mcarlo
 from mechlib.calibration import selection as sel
 from mechlib.calibration import study as st
-from mechlib.fivebar import identification as idf
 from mechlib.fivebar import kinematics as kin
-from mechlib.fivebar import study as fst
-from mechlib.mechanisms import fivebar5r
+from mechlib.fivebar import mechanism as fivebar
 
-MECH = fivebar5r.mechanism(0.8)
-REAL = fivebar5r.real_parameters()
+MECH = fivebar.mechanism(0.8)
+REAL = fivebar.real_parameters()
 MIW = kin.miw_closed_form(0.75, 1.1, 0.5)
-CANDIDATES = fst.disc_grid((0.0, MIW["cy"]), 0.8 * MIW["radius"], 0.08)
+CANDIDATES = fivebar.disc_grid((0.0, MIW["cy"]), 0.8 * MIW["radius"], 0.08)
 
 
 def test_the_5r_chapter_calls_the_dyad() -> None:
-    # the chapter checks its input, then runs the dyad's formulas: the same digits
+    # the chapter's kinematics checks its input, then runs the dyad's formulas: the same digits;
+    # the core's 5R legs are the dyad's too
     for k, mode in ((0, 1), (1, -1)):
         phi = MECH.nominal[k]
         np.testing.assert_array_equal(
             dyad.reading(CANDIDATES, phi, mode), kin.joint_reading(CANDIDATES, phi, mode)
         )
         np.testing.assert_array_equal(
-            dyad.jacobian(CANDIDATES, phi, mode),
-            idf.identification_jacobian(CANDIDATES, phi, mode),
+            dyad.jacobian(CANDIDATES, phi, mode), MECH.legs[k].jacobian(phi, CANDIDATES)
         )
 
 
@@ -95,9 +95,9 @@ def test_inconsistent_legs_are_refused() -> None:
 
 def test_shared_selection_equals_active_selection_on_the_stacked_blocks() -> None:
     c1, c2 = (leg.jacobian(leg.nominal, CANDIDATES) for leg in MECH.legs)
-    np.testing.assert_array_equal(
-        sel.select_shared([c1, c2], 14), sel.select_active(idf.posture_blocks(c1, c2), 14)
-    )
+    blocks = np.zeros((len(CANDIDATES), 2, 12))  # posture j: rows [C1_j, 0] and [0, C2_j]
+    blocks[:, 0, :6], blocks[:, 1, 6:] = c1, c2
+    np.testing.assert_array_equal(sel.select_shared([c1, c2], 14), sel.select_active(blocks, 14))
 
 
 def test_indices_known_answers() -> None:
@@ -110,6 +110,7 @@ def test_indices_known_answers() -> None:
 def test_budgets_follow_table_8s_accounting_for_the_5r() -> None:
     assert st.measurement_counts(MECH, 18, 36) == {"dc": 108, "trad": 144}
     assert st.budgets(MECH, 18) == {"thesis": 36, "matched": 27}
+    assert st.budgets(MECH, 18, st.ALL_BUDGETS) == {"thesis": 36, "equations": 18, "matched": 27}
     assert cost.normal_sizes(MECH)["flop_ratio"] == 4.0
 
 
@@ -117,10 +118,10 @@ def test_monte_carlo_is_seeded_and_noise_free_trials_are_exact() -> None:
     study = st.make_study(MECH, REAL, CANDIDATES, CANDIDATES[::5], np.ones(12))
     dc = st.select_dc(study, 8)
     trad = {"thesis": st.select_traditional(study, 16)}
-    a = st.monte_carlo(study, dc, trad, 1e-4, 3, 7)
-    b = st.monte_carlo(study, dc, trad, 1e-4, 3, 7)
+    a = mcarlo.monte_carlo(study, dc, trad, 1e-4, 3, 7)
+    b = mcarlo.monte_carlo(study, dc, trad, 1e-4, 3, 7)
     np.testing.assert_array_equal(a["dc"]["pos_rms"], b["dc"]["pos_rms"])
-    exact = st.monte_carlo(study, dc, trad, 0.0, 1, 7)
+    exact = mcarlo.monte_carlo(study, dc, trad, 0.0, 1, 7)
     assert exact["dc"]["pos_rms"][0] < 1e-10 and exact["thesis"]["pos_rms"][0] < 1e-10
     assert np.abs(exact["thesis"]["param"]).max() < 1e-8
 

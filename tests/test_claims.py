@@ -50,8 +50,8 @@ def test_a_claim_whose_evidence_splits_is_mixed_and_names_its_parts() -> None:
     v = claims.evaluate(_spec(), _values(0.5, 41.9))
     assert (v.word, v.holds, v.setting) == ("mixed", (True, False), "40 runs")
     assert v.category == cat.CAT_MIXED
-    assert "linear (by construction): largest 0.5 % (at most 1 %) (holds)" in v.evidence
-    assert "non-linear: largest 41.9 % (at most 1 %) (fails)" in v.evidence
+    assert "linear (by construction): largest 0.5 % (at most 1 %) (met)" in v.evidence
+    assert "non-linear: largest 41.9 % (at most 1 %) (not met)" in v.evidence
     row = v.row()
     assert row["claim"] == "t.claim" and row["quantity"].endswith("— 40 runs")
     assert (row["n_values"], row["n_agree"]) == (2, 1)

@@ -41,7 +41,14 @@ CHOSEN = {"trad": np.arange(12), "leg1": np.arange(6), "leg2": np.arange(6, 12)}
 NAMES = [*kin.leg_keys(1), *kin.leg_keys(2)]
 SENS = pd.DataFrame(
     [
-        {"n_per_leg": n, "sigma": s, "rms_dc_um": 2.0 * s, "rms_trad_um": s, "share_dc_better": 0.3}
+        {
+            "n_per_leg": n,
+            "n_shared": 2 * n,
+            "sigma": s,
+            "pos_rms_dc": 2.0 * s,
+            "pos_rms_trad": s,
+            "share_dc_better": 0.3,
+        }
         for n in (9, 18)
         for s in (1e-5, 1e-4)
     ]

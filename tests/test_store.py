@@ -158,7 +158,9 @@ def test_a_scheduler_that_does_not_answer_is_named() -> None:
         executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)
 
 
-def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp_path, capsys):
+def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(
+    built, tmp_path, capsys, monkeypatch
+):
     from mechlib.pipeline import storecmd
 
     cache, log = built
@@ -166,9 +168,17 @@ def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(built, tmp
     assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
     assert "no " in capsys.readouterr().out  # no store yet: every task is computed
     args = ["--log", str(log), "--cache", str(cache), "--store", str(folder), "--seconds", "12"]
-    assert storecmd.main(["pack", *args]) == 0
+    # a store records the commit that computed it: a tree with uncommitted changes is refused
+    monkeypatch.setattr(storecmd, "commit", lambda: "0123456789ab + local changes")
+    assert storecmd.main(["pack", *args]) == 2 and not folder.exists()
+    assert "uncommitted changes" in capsys.readouterr().err
+    monkeypatch.setattr(storecmd, "commit", lambda: "0123456789ab")
+    assert storecmd.main(["pack", *args, "--commit", "fedcba987654"]) == 2
+    assert "not fedcba987654" in capsys.readouterr().err
+    assert storecmd.main(["pack", *args, "--commit", "0123456789ab"]) == 0
     manifest = st.read_manifest(folder)
-    assert manifest["seconds"] == 12 and manifest["processor"] and manifest["commit"]
+    assert manifest["seconds"] == 12 and manifest["processor"]
+    assert manifest["commit"] == "0123456789ab"
     assert manifest["from_empty"] is False  # no --from-empty: the seconds resumed a cache
     assert storecmd.main(["seed", "--store", str(folder), "--cache", str(tmp_path / "c")]) == 0
     assert "3 FE tasks" in capsys.readouterr().out

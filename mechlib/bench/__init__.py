@@ -40,11 +40,11 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib import dyad
 from mechlib import published as pub
-from mechlib.fivebar import identification as idf
+from mechlib.calibration import selection as sel
 from mechlib.fivebar import kinematics as kin
-from mechlib.fivebar import postures as ps
-from mechlib.fivebar.study import disc_grid
+from mechlib.fivebar.mechanism import disc_grid
 
 N_CANDIDATES = 10_000
 N_SELECT = 18
@@ -69,11 +69,11 @@ def posture_selection() -> dict[str, float]:
     radius = 0.8 * miw["radius"]
     spacing = radius * np.sqrt(np.pi / N_CANDIDATES)
     cands = disc_grid((0.0, miw["cy"]), radius, spacing)
-    c1 = idf.identification_jacobian(cands, phi1, 1)
+    c1 = dyad.jacobian(cands, phi1, 1)
     t0 = time.perf_counter()
-    fast = ps.select_active(c1, N_SELECT, max_passes=0)
+    fast = sel.select_active(c1, N_SELECT, max_passes=0)
     t1 = time.perf_counter()
-    slow = ps.select_reference_svd(c1, N_SELECT, max_passes=0)
+    slow = sel.select_reference_svd(c1, N_SELECT, max_passes=0)
     t2 = time.perf_counter()
     return {
         "candidates": len(cands),
@@ -194,12 +194,13 @@ def _print_calibration() -> None:
     """Identification cost against the number of legs (5R, 3-RRR, 6-UPS): the normal-matrix
     inversion ratio counted (Table 6's n_limbs² law) and one normal-equation solve timed."""
     from mechlib.calibration import mechanism as cm
-    from mechlib.mechanisms import fivebar5r, gough_stewart, rrr3
+    from mechlib.fivebar import mechanism as fivebar
+    from mechlib.mechanisms import gough_stewart, rrr3
 
     rng = np.random.default_rng(0)
     print("identification cost, traditional / D&C (one thread; 3 poses per parameter):")
     miw = kin.miw_closed_form(0.75, 1.1, 0.5)
-    _print_cost(fivebar5r.mechanism(), disc_grid((0.0, miw["cy"]), 0.5 * miw["radius"], 0.1)[:18])
+    _print_cost(fivebar.mechanism(), disc_grid((0.0, miw["cy"]), 0.5 * miw["radius"], 0.1)[:18])
     for mech, box in (
         (rrr3.mechanism(), rrr3.box()),
         (gough_stewart.mechanism(), gough_stewart.box()),

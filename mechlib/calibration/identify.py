@@ -3,10 +3,12 @@
 For leg κ, measured poses ``R̂`` and readings ``Q̂κ``, the residual is ``Q̂κ − gκ(φκ, R̂)`` and its
 Jacobian ``Cκ`` (Eq 17). *Divide and conquer* solves each leg on its own pose set; the
 *traditional* method solves every parameter at once on one shared pose set, with the total
-matrix ``C = diag(C1, …, Cn)`` (leg κ's reading depends only on φκ). Both use
-Levenberg–Marquardt (``scipy.optimize.least_squares(method="lm")``). Identifiability is the
-rank of the column-scaled ``C`` and its minimal parameter set the pivots of a QR factorisation
-with column pivoting.
+matrix ``C = diag(C1, …, Cn)`` (leg κ's reading depends only on φκ). Both solve by
+Levenberg–Marquardt (``scipy.optimize.least_squares(method="lm")``, the default) or by the
+thesis's Gauss–Newton iteration (Eq 26, ``solver="gn"``): ``Δφ = (CᵀC)⁻¹ Cᵀ ΔQ`` (a least-squares
+solve) until the largest step is below :data:`GN_TOL`. Identifiability is the rank of the
+column-scaled ``C`` and its minimal parameter set the pivots of a QR factorisation with column
+pivoting.
 """
 
 from __future__ import annotations
@@ -19,17 +21,25 @@ from scipy.linalg import block_diag, qr
 from scipy.optimize import least_squares
 
 from mechlib.calibration.mechanism import Leg, Mechanism, check_phis
+from mechlib.params import check_choice
 
 #: Relative threshold on |R_ii| / |R_00| of the pivoted QR below which a column is dependent.
 RANK_TOL = 1e-9
 #: Levenberg–Marquardt tolerances (MINPACK needs them above machine epsilon).
 LM_TOL = 1e-14
+#: Gauss–Newton (Eq 26): stop when the largest parameter step is below GN_TOL [m, rad, gain];
+#: a fit still moving after GN_MAX_ITER iterations has not converged.
+GN_TOL = 1e-12
+GN_MAX_ITER = 50
+#: The solvers: Levenberg–Marquardt (SciPy's MINPACK) and the thesis's Gauss–Newton (Eq 26).
+SOLVERS = ("lm", "gn")
 
 
 @dataclass(frozen=True)
 class Fit:
-    """Identified parameters (one leg, or every leg stacked), function evaluations, residual RMS
-    and whether the solver reported convergence."""
+    """Identified parameters (one leg, or every leg stacked), function evaluations
+    (Levenberg–Marquardt) or iterations (Gauss–Newton), residual RMS and whether the solver
+    reported convergence."""
 
     phi: np.ndarray
     evaluations: int
@@ -84,7 +94,27 @@ def check_identifiable(c: object, names: Sequence[str]) -> None:
         )
 
 
-def _fit(fun, jac, x0: np.ndarray) -> tuple[np.ndarray, int, float, bool]:
+def check_solver(solver: str) -> str:
+    """``solver`` if it is one of :data:`SOLVERS`, else ``ValueError``."""
+    return check_choice("solver", solver, SOLVERS)
+
+
+def _gauss_newton(fun, jac, x0: np.ndarray) -> tuple[np.ndarray, int, float, bool]:
+    """Eq 26 iterated: ``x ← x + lstsq(C, −r)``; converged when the step is below GN_TOL."""
+    x, step, it = x0.copy(), np.inf, 0
+    for it in range(1, GN_MAX_ITER + 1):  # noqa: B007 - the count is reported
+        dx = np.linalg.lstsq(jac(x), -fun(x), rcond=None)[0]
+        x = x + dx
+        step = float(np.max(np.abs(dx)))
+        if not step >= GN_TOL:  # below the tolerance, or not finite
+            break
+    res = fun(x) if np.all(np.isfinite(x)) else np.full(1, np.nan)
+    return x, it, float(np.sqrt(np.mean(res**2))), bool(step < GN_TOL)
+
+
+def _fit(fun, jac, x0: np.ndarray, solver: str) -> tuple[np.ndarray, int, float, bool]:
+    if check_solver(solver) == "gn":
+        return _gauss_newton(fun, jac, x0)
     sol = least_squares(
         fun, x0, jac=jac, method="lm", x_scale="jac", xtol=LM_TOL, ftol=LM_TOL, gtol=LM_TOL
     )
@@ -92,7 +122,13 @@ def _fit(fun, jac, x0: np.ndarray) -> tuple[np.ndarray, int, float, bool]:
 
 
 def identify_leg(
-    leg: Leg, poses: object, q: object, phi0: object | None = None, *, check: bool = True
+    leg: Leg,
+    poses: object,
+    q: object,
+    phi0: object | None = None,
+    *,
+    check: bool = True,
+    solver: str = "lm",
 ) -> Fit:
     """Identify one leg from its own measured poses and readings (divide and conquer).
 
@@ -107,6 +143,8 @@ def identify_leg(
         Starting parameters; default the nominal ones.
     check : bool
         Check identifiability first (a Monte Carlo checks its pose sets once).
+    solver : {"lm", "gn"}
+        Levenberg–Marquardt or Gauss–Newton (Eq 26); both stop at the least-squares solution.
 
     Raises
     ------
@@ -120,7 +158,7 @@ def identify_leg(
         raise ValueError(f"q must have one reading per pose ({len(r)}), got shape {qk.shape}")
     if check:
         check_identifiable(leg.jacobian(x0, r), leg.names)
-    x, nfev, rms, ok = _fit(lambda p: leg.ik(p, r) - qk, lambda p: leg.jacobian(p, r), x0)
+    x, nfev, rms, ok = _fit(lambda p: leg.ik(p, r) - qk, lambda p: leg.jacobian(p, r), x0, solver)
     return Fit(x, nfev, rms, ok)
 
 
@@ -139,6 +177,7 @@ def identify_traditional(
     phis0: Sequence[object] | None = None,
     *,
     check: bool = True,
+    solver: str = "lm",
 ) -> Fit:
     """Identify every parameter at once from one shared pose set (Eq 19 on the total matrix).
 
@@ -152,6 +191,8 @@ def identify_traditional(
         Starting parameters per leg; default the nominal ones.
     check : bool
         Check identifiability first.
+    solver : {"lm", "gn"}
+        As for :func:`identify_leg`.
 
     Returns
     -------
@@ -177,7 +218,7 @@ def identify_traditional(
         )
 
     x, nfev, rms, ok = _fit(
-        fun, lambda x: total_jacobian(mech, np.split(x, cuts), r), np.concatenate(phis0)
+        fun, lambda x: total_jacobian(mech, np.split(x, cuts), r), np.concatenate(phis0), solver
     )
     return Fit(x, nfev, rms, ok)
 

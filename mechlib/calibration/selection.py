@@ -1,7 +1,7 @@
 """Observability indices and optimal posture selection (thesis Eq 18; Sun & Hollerbach 2008).
 
-Mechanism-independent: used by every mechanism of :mod:`mechlib.mechanisms` and by the 5R chapter
-(:mod:`mechlib.fivebar.postures` re-exports it).
+Mechanism-independent: used by every instance of the core (:mod:`mechlib.fivebar.mechanism`,
+:mod:`mechlib.mechanisms`).
 
 A candidate posture contributes a block ``G_j`` (p × n) of rows to the identification matrix:
 one row per leg reading (p = 1 for one leg, p = 2 for the traditional 12-parameter matrix,

@@ -30,7 +30,7 @@ NOMINAL_ASSEMBLY = 1
 SINGULAR_TOL = 1e-6
 """Smallest |sine| of a link angle (see :func:`singularity_measures`) accepted as a regular pose:
 :func:`check_regular`'s default, and the serial-singularity guard of the identification
-Jacobian (:func:`mechlib.fivebar.identification.identification_jacobian`)."""
+Jacobian (``min_sine`` of :func:`mechlib.dyad.jacobian`)."""
 
 
 def leg_keys(leg: int) -> tuple[str, ...]:

@@ -1,7 +1,8 @@
 """The three mechanisms of the "Beyond the 5R" study, each assembled into a
 :class:`mechlib.calibration.study.Study`: nominal design, real (disturbed) parameters, candidate
 poses and the evaluation poses (a regular slice of the workspace, for the maps, then random poses
-over the whole calibration region).
+over the whole calibration region). The 5R is its chapter's study
+(:func:`mechlib.fivebar.mechanism.study`), with the chapter's settings by default.
 """
 
 from __future__ import annotations
@@ -12,14 +13,13 @@ import numpy as np
 
 from mechlib.calibration import mechanism as cm
 from mechlib.calibration import study as st
-from mechlib.fivebar import kinematics as kin
-from mechlib.fivebar.study import disc_grid
-from mechlib.mechanisms import fivebar5r, gough_stewart, rrr3
+from mechlib.fivebar import mechanism as fivebar
+from mechlib.mechanisms import gough_stewart, rrr3
 from mechlib.params import check_choice, check_float, check_int
 
 NAMES = ("5R", "3-RRR", "6-UPS")
 #: Share of the 5R's MIW radius inside which its candidate poses lie (the thesis's workspace).
-FIVEBAR_FRACTION = 0.8
+FIVEBAR_FRACTION = fivebar.FRACTION
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,9 @@ def build(
     n_random_grid: int,
     slice_points: int,
     fivebar_fraction: float = FIVEBAR_FRACTION,
-    fivebar_spacing: float = 0.04,
+    fivebar_spacing: float = fivebar.CANDIDATE_SPACING,
+    fivebar_grid_spacing: float = fivebar.GRID_SPACING,
+    fivebar_solver: str = fivebar.SOLVER,
 ) -> Built:
     """Assemble the study of mechanism ``name``.
 
@@ -66,12 +68,16 @@ def build(
     n_candidates : int
         Random candidate poses drawn in the box (3-RRR, 6-UPS; those not regular are dropped).
     n_random_grid : int
-        Random evaluation poses after the slice.
+        Random evaluation poses after the slice (3-RRR, 6-UPS).
     slice_points : int
-        Points per side of the regular evaluation slice (``x``–``y`` at the box centre; for
-        the 5R a disc lattice of that many points across the calibration disc).
-    fivebar_fraction, fivebar_spacing : float
-        The 5R's calibration disc (share of the MIW radius) and candidate spacing [m].
+        Points per side of the regular evaluation slice (``x``–``y`` at the box centre; 3-RRR,
+        6-UPS).
+    fivebar_fraction, fivebar_spacing, fivebar_grid_spacing : float
+        The 5R's calibration disc (share of the MIW radius), candidate and evaluation lattice
+        spacings [m]; the 5R's evaluation poses are all its lattice (``n_slice`` = all).
+    fivebar_solver : {"gn", "lm"}
+        The 5R's identification solver: its chapter's Gauss–Newton (Eq 26) by default; the
+        3-RRR and the 6-UPS are solved by Levenberg–Marquardt.
     """
     check_choice("mechanism", name, NAMES)
     seed = check_int("seed", seed, low=0)
@@ -82,15 +88,10 @@ def build(
     rng = np.random.default_rng(seed)
     units = {"m": disturbance, "-": disturbance, "rad": disturbance}
     if name == "5R":
-        mech = fivebar5r.mechanism(fivebar_fraction)
-        nom = mech.nominal[0]
-        miw = kin.miw_closed_form(nom[0], nom[1], abs(nom[2]))
-        radius = fivebar_fraction * miw["radius"]
-        candidates = disc_grid((miw["cx"], miw["cy"]), radius, fivebar_spacing)
-        grid = disc_grid((miw["cx"], miw["cy"]), radius, 2 * radius / (slice_points - 1))
-        scale = np.full(len(mech.names), disturbance)
-        study = st.make_study(mech, fivebar5r.real_parameters(), candidates, grid, scale)
-        return Built(study, len(grid))
+        study = fivebar.study(
+            fivebar_fraction, fivebar_spacing, fivebar_grid_spacing, disturbance, fivebar_solver
+        )
+        return Built(study, len(study.grid))
     mod = rrr3 if name == "3-RRR" else gough_stewart
     mech = mod.mechanism()
     lo, hi = mod.box()

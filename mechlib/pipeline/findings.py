@@ -175,7 +175,7 @@ FINDINGS: tuple[Finding, ...] = (
         "The HexFlex is linear over ±1 N: [[ch2.linear]]; Eq 6's quadratic terms are "
         "negligible: [[ch2.eq6]]; the 6 × 6 matrix S_T is accurate by the thesis's own "
         "yardsticks: [[ch2.table5]]; it is simple enough for real-time control: "
-        "[[ch2.realtime]]. Each holds on a linear FE model by construction; on a geometrically "
+        "[[ch2.realtime]]. Each is true of a linear FE model by construction; on a geometrically "
         "non-linear model with Eq 8's compliance the linear meta-model misses {n:.0f} runs at "
         "±1 N by up to {worst:.3g} % of a pose component's range, and Eq 6 fitted to non-linear "
         "runs has second-order terms up to {eq6:.2g} of its largest linear one.",

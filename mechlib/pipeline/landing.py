@@ -74,7 +74,7 @@ LEGEND = (
 
 RERUN_TEXT = """\
 ```{admonition} Re-run this page
-Each chapter is a notebook whose first cell holds its parameters.
+Each chapter is a notebook whose first cell sets its parameters.
 `make run NB=published_doe ARGS="-p n_random_designs 5000"` executes one into `build/runs/`
 without touching this build; `make book PROFILE=full` builds the whole book with a finer
 mesh-convergence study of the linear model.
@@ -146,9 +146,7 @@ def finding_lines(
         numbers = {name: quote(records, where) for name, where in finding.values.items()}
     except KeyError:
         return []
-    shown = row is None or (
-        row.category in finding.shown_if and finding.holds in (None, row.holds)
-    )
+    shown = row is None or (row.category in finding.shown_if and finding.holds in (None, row.holds))
     title, template = (finding.title, finding.text) if shown else finding.otherwise
     if not template:
         return []
@@ -195,7 +193,7 @@ def counts_sentence(counts: Mapping[str, int]) -> str:
     sizes = ", ".join(f"{n} {name}" for name, n in groups.items())
     return (
         f"The report has {sum(counts.values())} rows ({sizes}); findings of ours are never "
-        f"counted among the thesis's claims, and agreement that holds by construction is not "
+        f"counted among the thesis's claims, and agreement that follows by construction is not "
         f"counted as reproduction."
     )
 

@@ -3,7 +3,8 @@ postures (Fig 12), parameter errors (Fig 13), error maps (Fig 14), and the Monte
 distributions and sensitivity.
 
 The data arrive computed: the singularity field and the leg chains by
-:mod:`mechlib.fivebar.workspace`, the errors by :mod:`mechlib.fivebar.study`. A MIW is the dict
+:mod:`mechlib.fivebar.workspace`, the errors by the calibration core
+(:mod:`mechlib.calibration.montecarlo`, :mod:`mechlib.calibration.statistics`). A MIW is the dict
 of :func:`mechlib.fivebar.kinematics.miw_closed_form` (``cx``, ``cy``, ``radius`` [m]).
 """
 
@@ -16,7 +17,6 @@ from matplotlib import colors
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from mechlib.fivebar.study import SHARED_PER_LEG_POSTURE
 from mechlib.fivebar.workspace import SingularityField
 from mechlib.plotting.style import (
     ACTIVE_COLOR,
@@ -354,8 +354,8 @@ def fivebar_sensitivity(
     Parameters
     ----------
     table : pandas.DataFrame
-        The rows of :func:`mechlib.fivebar.study.sensitivity`: ``n_per_leg``, ``sigma``,
-        ``rms_dc_um``, ``rms_trad_um``, ``share_dc_better``.
+        The rows of :func:`mechlib.calibration.montecarlo.sweep` for one budget: ``n_per_leg``,
+        ``n_shared``, ``sigma``, ``pos_rms_dc``, ``pos_rms_trad``, ``share_dc_better``.
     sigmas : sequence of float
         Noise levels [m and rad], the x ticks.
     counts : sequence of int
@@ -370,8 +370,8 @@ def fivebar_sensitivity(
     fig, (ax0, ax1) = figure_and_panels(axes, (1, 2), (10.0, 3.6))
     for n, marker in zip(counts, "osd^v", strict=False):
         sub = table[table["n_per_leg"] == n]
-        ratio = sub["rms_dc_um"] / sub["rms_trad_um"]
-        shared = SHARED_PER_LEG_POSTURE * n
+        ratio = sub["pos_rms_dc"] / sub["pos_rms_trad"]
+        shared = int(sub["n_shared"].iloc[0])
         ax0.plot(sub["sigma"], ratio, marker=marker, label=f"{n} per leg / {shared} shared")
         ax1.plot(sub["sigma"], 100 * sub["share_dc_better"], marker=marker)
     ax0.axhline(1.0, color="k", lw=0.8)

@@ -207,7 +207,7 @@ def evaluate(spec: ClaimSpec, values: Mapping[str, Any]) -> Verdict:
     holds = tuple(bool(t.rule(*v)) for t, v in read_parts)
     evidence = "; ".join(
         f"{t.label}{' (by construction)' if t.by_construction else ''}: {t.describe(*v)} "
-        f"({'holds' if h else 'fails'})"
+        f"({'met' if h else 'not met'})"
         for (t, v), h in zip(read_parts, holds, strict=True)
     )
     return Verdict(spec, verdict_word(spec.source, holds), holds, evidence, setting)

@@ -66,6 +66,11 @@ def _beyond_5r() -> list[ClaimSpec]:
                     B5R,
                     (
                         paired(
+                            "parameter RMS error",
+                            f"{slug}_{budget}.param_share_dc_better",
+                            f"{slug}_{budget}.param_p_value",
+                        ),
+                        paired(
                             "workspace RMS position error",
                             f"{slug}_{budget}.share_dc_better",
                             f"{slug}_{budget}.p_value",

@@ -113,29 +113,32 @@ FIG9 = MethodFigure(
             "compute the identification Jacobian Cκ = ∂gκ/∂φκᵀ over candidate postures "
             "(Eq 17)",
             (("fivebar_identification", "Fig 12"),),
-            ("mechlib.fivebar.identification.identification_jacobian",),
+            ("mechlib.dyad.jacobian",),
         ),
         MethodStep(
             "Select the postures Rκ that maximise the observability O₁(Cκ) by active "
             "calibration (Eq 18)",
             (("fivebar_identification", "Fig 12"),),
-            ("mechlib.fivebar.postures.select_active", "mechlib.fivebar.postures.observability_o1"),
+            (
+                "mechlib.calibration.selection.select_active",
+                "mechlib.calibration.selection.observability_o1",
+            ),
         ),
         MethodStep(
             "Measure the end-effector poses R̂κ and joint readings Q̂κ there, and solve "
             "Eq 16 (least squares on the inverse kinematics)",
             (("fivebar_identification", "Table 7"),),
             (
-                "mechlib.fivebar.identification.simulate_measurements",
-                "mechlib.fivebar.identification.identify_leg",
+                "mechlib.calibration.mechanism.simulate",
+                "mechlib.calibration.identify.identify_leg",
             ),
         ),
         MethodStep(
             "Update the mechanism's kinematic model with the identified φκ",
             (("fivebar_identification", "Fig 14"),),
             (
-                "mechlib.fivebar.identification.position_errors",
-                "mechlib.fivebar.study.position_error_map",
+                "mechlib.calibration.mechanism.pose_errors",
+                "mechlib.calibration.statistics.local_rms",
             ),
         ),
     ),
