@@ -31,7 +31,8 @@ PIPELINE    := $(PY) -m mechlib.pipeline
 # that executes a notebook (book, run, notebooks, test, store) reads the store's runs instead of
 # solving them; a stale, edited or corrupt store is refused in one line before any notebook runs
 STORE       := store
-FE_CACHE    := $(BUILD)/cache/experiments
+# the notebooks' FE cache (mechlib.paths.fe_cache_dir: every profile reads the same one)
+FE_CACHE    := build/cache/experiments
 STORE_SEEDED := $(FE_CACHE)/.store-seeded
 # the targets that compare with tests/references run the ci profile only
 REQUIRE_CI   = @test "$(PROFILE)" = ci || { echo "make $@ runs the ci profile (tests/references); got PROFILE=$(PROFILE)"; exit 2; }
@@ -168,8 +169,7 @@ STORE_LOG  := $(BUILD)/store-tasks.jsonl
 # seeds again whatever the stamp says
 $(STORE_SEEDED): $(wildcard $(STORE)/manifest.json $(STORE)/results.npz) | $(STAMP)
 	$(if $(NO_STORE_SEED),@echo "store: not read (make store FROM_EMPTY=1 solves every FE task)",\
-	  $(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE))
-	@mkdir -p $(FE_CACHE) && touch $@
+	  $(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE) && touch $@)
 
 store-seed: $(STAMP)
 	$(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE)

@@ -43,8 +43,10 @@ def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
     counts = verdicts.category_counts(rows)
     assert pagecheck.count_table(page) == counts
     assert counts[cat.CAT_REDRAWN] == len(verdicts.REDRAWN)
-    assert counts[cat.CAT_CONSISTENT_THESIS] == 1  # Table 4's units against Eq 8
-    assert counts[cat.CAT_CONSTRUCTION] == 14 and counts[cat.CAT_OURS] == 21
+    # Table 4's units against Eq 8, Table 1's levels against Tables 2 and 4, Figs 6-7's list
+    # against Table 2's effects
+    assert counts[cat.CAT_CONSISTENT_THESIS] == 3
+    assert counts[cat.CAT_CONSTRUCTION] == 13 and counts[cat.CAT_OURS] == 21
     report_page = "# Report\n\n" + verdicts.counts_table(counts) + "\n"
     assert pagecheck.counts_problems(page, report_page, rows) == []
     group = verdicts.COUNT_GROUPS[0][0]
@@ -84,7 +86,7 @@ def test_a_finding_whose_values_were_not_recorded_is_left_out(
     title = "**Table 5 looks like a linear analysis (our reading)**"
     assert title in landing.landing_markdown(records, "ci")
     smoke = copy.deepcopy(records)
-    del smoke["virtual_experiments"]["values"]["table5.nonlinear.max_rel_pct"]
+    del smoke["virtual_experiments"]["values"]["table5.nonlinear.max_range_pct"]
     text = landing.landing_markdown(smoke, "smoke")
     assert title not in text
     assert "built with the **smoke** profile" in text

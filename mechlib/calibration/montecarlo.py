@@ -78,7 +78,8 @@ def _record(out: dict, study: st.Study, fits: Mapping[str, tuple[np.ndarray, flo
         o["ang_rms"].append(np.sqrt(np.sum(e[:, ang] ** 2, axis=1).mean()) if ang.any() else 0.0)
         o["pos_sq"].append(pos)
         o["time"].append(seconds)
-        o["converged"].append(ok)
+        # a model that cannot be evaluated (NaN errors) is a failed fit: left out, never compared
+        o["converged"].append(bool(ok and np.all(np.isfinite(pos))))
 
 
 def monte_carlo(
@@ -103,8 +104,8 @@ def monte_carlo(
         (trials, P) identified parameters; ``param`` (trials, P) their errors in units of
         ``study.scale``; ``pos_rms`` [m] and ``ang_rms`` [rad] workspace RMS errors; ``pos_sq``
         (trials, grid) squared position error at each grid pose [m²]; ``time`` solve time [s];
-        ``converged`` whether every fit of the strategy converged. A model that cannot be
-        evaluated (a failed fit far from the real parameters) has NaN errors.
+        ``converged`` whether every fit of the strategy converged and its model could be evaluated
+        (a failed fit far from the real parameters has NaN errors and counts as not converged).
 
     Raises
     ------

@@ -15,12 +15,14 @@ from __future__ import annotations
 import argparse
 import datetime as dt
 import platform
+import subprocess
 import sys
 from pathlib import Path
 
 from mechlib.hexflex.campaign import store
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
-from mechlib.pipeline.provenance import commit, cpu_model
+from mechlib.paths import REPO_ROOT
+from mechlib.pipeline.provenance import UNKNOWN, commit, cpu_model
 
 #: non-linear and linear tasks of the store that ``make test`` recomputes cold
 COLD_NONLINEAR, COLD_LINEAR = 30, 2
@@ -105,17 +107,42 @@ def clean_commit(expected: str | None = None) -> str:
         Naming the commit and what to do.
     """
     head = commit()
+    if head == UNKNOWN:
+        raise store.StoreError(
+            "no git commit could be read: a store records the commit that computed it"
+        )
+    untracked = _untracked_sources()
+    if untracked:
+        raise store.StoreError(
+            f"files not in git that a build reads: {', '.join(untracked[:5])}: add or remove them, "
+            "then `make store`"
+        )
     if DIRTY in head:
         raise store.StoreError(
             f"the work tree has uncommitted changes ({head}): commit them, then `make store`, so "
             "that the store records the commit that computed it"
         )
-    if expected is not None and not expected.startswith(head) and not head.startswith(expected):
+    if expected is not None and (
+        not expected.strip() or not (expected.startswith(head) or head.startswith(expected))
+    ):
         raise store.StoreError(
             f"the checked-out commit {head} is not {expected}, the one the build started from: "
             "run `make store` again on one commit"
         )
     return head
+
+
+def _untracked_sources() -> list[str]:
+    """Files under mechlib/ and notebooks/ that git does not track (and does not ignore)."""
+    try:
+        out = subprocess.run(
+            ["git", "-C", str(REPO_ROOT), "ls-files", "--others", "--exclude-standard",
+             "mechlib", "notebooks"],
+            capture_output=True, text=True, check=True,
+        ).stdout  # fmt: skip
+    except (OSError, subprocess.CalledProcessError):
+        return []
+    return [line for line in out.splitlines() if line.strip()]
 
 
 def _clean(args: argparse.Namespace) -> int:

@@ -9,6 +9,11 @@ that records its evidence, the record keys the verdict is computed from and the 
   **mixed** when the evidence splits;
 - a finding of ours **holds**, **does not hold**, or is **mixed** likewise.
 
+A part that holds by construction on our model is the claim tested in the thesis's own setting —
+a linear FE analysis, which our linear model reproduces — and it counts in the verdict: a claim
+that holds there and fails on a geometrically non-linear model is **mixed**, its report row marks
+the part "(by construction)", and the pages say which part is which.
+
 A notebook records the evidence, then calls :meth:`mechlib.reporting.records.Recorder.claim`,
 which evaluates the rule here, records the verdict word under ``claims.<id>`` and adds the claim's
 report row. The book's pages never compose a verdict word: they quote it by id (the ``verdict``
@@ -26,6 +31,7 @@ from typing import Any
 
 import numpy as np
 
+from mechlib.calibration.statistics import CLAIM_MAX_P, CLAIM_MIN_SHARE
 from mechlib.reporting import categories as cat
 
 SUPPORTED, NOT_SUPPORTED, MIXED = "supported", "not supported", "mixed"
@@ -34,10 +40,10 @@ HOLDS, DOES_NOT_HOLD = "holds", "does not hold"
 VERDICT_WORDS = (NOT_SUPPORTED, DOES_NOT_HOLD, SUPPORTED, HOLDS, MIXED)
 #: what a claim's report row shows as its published value
 CLAIM_PUBLISHED = "(claim)"
-#: D&C "wins" a paired comparison when it is better in more than this share of the trials ...
-PAIRED_MIN_SHARE = 0.5
-#: ... and the Wilcoxon signed-rank test rejects "no difference" at this level (two-sided)
-PAIRED_MAX_P = 0.05
+#: D&C "wins" a paired comparison when it is better in more than this share of the trials and
+#: the Wilcoxon signed-rank test rejects "no difference" at this level (two-sided): the
+#: calibration core's rule (:func:`mechlib.calibration.statistics.claim_holds`), one definition
+PAIRED_MIN_SHARE, PAIRED_MAX_P = CLAIM_MIN_SHARE, CLAIM_MAX_P
 
 #: A record reference: a key, or a key and an index into its value (or "min"/"max" of it).
 Ref = str | tuple[str, object]
@@ -236,8 +242,18 @@ def paired(label: str, share: Ref, p_value: Ref, what: str = "D&C") -> Test:
     )
 
 
-def at_most(label: str, ref: Ref, limit: float, unit: str, what: str = "largest") -> Test:
-    """The largest of the recorded values is at most ``limit`` (in ``unit``)."""
+def at_most(
+    label: str, ref: Ref, limit: float, unit: str, what: str = "largest", strict: bool = False
+) -> Test:
+    """The largest of the recorded values is at most ``limit`` (in ``unit``; below it when
+    ``strict``)."""
+    if strict:
+        return Test(
+            label,
+            (ref,),
+            lambda v: float(_num(v).max()) < limit,
+            lambda v: f"{what} {_q(float(_num(v).max()), unit)} (below {_q(limit, unit, 'g')})",
+        )
     return Test(
         label,
         (ref,),
@@ -259,6 +275,20 @@ def within(label: str, ref: Ref, limit: Ref, unit: str, what: str = "largest") -
     )
 
 
+def each_within(label: str, ref: Ref, limits: Ref, unit: str) -> Test:
+    """Each recorded value is at most the recorded limit of the same index (e.g. a difference
+    per quantity against a tolerance per quantity)."""
+    return Test(
+        label,
+        (ref, limits),
+        lambda v, lim: bool(np.all(_num(v) <= _num(lim))),
+        lambda v, lim: "; ".join(
+            f"{_q(a, unit)} (at most {_q(b, unit, 'g')})"
+            for a, b in zip(_num(v).ravel(), _num(lim).ravel(), strict=True)
+        ),
+    )
+
+
 def at_least(
     label: str, ref: Ref, limit: float, unit: str, what: str = "smallest", reduce: str = "min"
 ) -> Test:
@@ -272,6 +302,31 @@ def at_least(
         lambda v: float(getattr(_num(v), reduce)()) >= limit,
         lambda v: (
             f"{what} {float(getattr(_num(v), reduce)()):.3g} {unit} (at least {limit:g} {unit})"
+        ),
+    )
+
+
+def timed_below(label: str, ref: Ref, limit: float, unit: str) -> Test:
+    """A measured time (a record's timing) is below ``limit``. Its value is not written into the
+    evidence (a timing differs between runs; the page quotes it as measured), and the limit must
+    leave a margin of orders of magnitude, so that no machine of ours flips the verdict."""
+    return Test(
+        label,
+        (ref,),
+        lambda v: float(v) < limit,
+        lambda v: f"measured on the machine that built the book, below {_q(limit, unit, 'g')}",
+    )
+
+
+def all_above(label: str, ref: Ref, limit: float, unit: str = "") -> Test:
+    """Every recorded value is above ``limit`` (e.g. a share of trials in every cell)."""
+    return Test(
+        label,
+        (ref,),
+        lambda v: bool(np.all(_num(v) > limit)),
+        lambda v: (
+            f"smallest {_q(float(_num(v).min()), unit)} of {np.size(v)} (each above "
+            f"{_q(limit, unit, 'g')})"
         ),
     )
 

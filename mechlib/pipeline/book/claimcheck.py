@@ -38,7 +38,8 @@ class _Reader(HTMLParser):
 
     def __init__(self) -> None:
         super().__init__(convert_charrefs=True)
-        self.stack: list[str] = []  # per open element: "", "skip", "verdict:<class>", "category"
+        # per open element: its tag and "", "skip", "verdict:<class>" or "category"
+        self.stack: list[tuple[str, str]] = []
         self.quoted: list[tuple[int, str, str]] = []
         self.text: list[tuple[int, str]] = []
 
@@ -55,16 +56,19 @@ class _Reader(HTMLParser):
             self.quoted.append((self.getpos()[0], kind.split(":", 1)[1], ""))
         elif CATEGORY_CLASS in classes:
             kind = "category"
-        self.stack.append(kind)
+        self.stack.append((tag, kind))
 
     def handle_endtag(self, tag: str) -> None:
-        if tag not in VOID_ELEMENTS and self.stack:
-            self.stack.pop()
+        # close up to the matching element (an unclosed <p> or <li> inside it closes with it)
+        tags = [t for t, _ in self.stack]
+        if tag not in VOID_ELEMENTS and tag in tags:
+            del self.stack[len(tags) - 1 - tags[::-1].index(tag) :]
 
     def handle_data(self, data: str) -> None:
-        if "skip" in self.stack or "category" in self.stack:
+        kinds = [k for _, k in self.stack]
+        if "skip" in kinds or "category" in kinds:
             return
-        if any(k.startswith("verdict:") for k in self.stack):
+        if any(k.startswith("verdict:") for k in kinds):
             line, cls, word = self.quoted[-1]
             self.quoted[-1] = (line, cls, word + data)
             return

@@ -2,7 +2,7 @@
 
 ``{verdict}`ch3.iii.5r.table8``` renders the verdict word the claims registry gives that claim in
 this build (``book/generated/claims.json``, written by the book build from the records:
-:func:`mechlib.reporting.claimlist.judge`), as ``<span class="claim-verdict claim-ch3-iii-5r-
+:func:`mechlib.reporting.claimlist.judge`), as ``<span class="claim-verdict claim-id-ch3-iii-5r-
 table8">mixed</span>``; an id that this build did not judge stops the build. ``{category}`…```
 marks the name of a report category ("thesis claim supported"), which contains verdict words
 without being a verdict of its own. The page check (:mod:`mechlib.pipeline.book.claimcheck`) reads
