@@ -113,6 +113,8 @@ TABLE2_RESPONSES_RESOLUTION = printed_resolution(_TABLE2)[:, 6:]
 #: µrad its header says (Eq 8 applied to its forces gives translations ≈ 1000 times smaller and
 #: rotations ≈ 1000 times larger; the published-data page measures these ratios).
 TABLE2_PRINTED_PER_HEADER_UNIT = np.array([1e3, 1e3, 1e3, 1e-3, 1e-3, 1e-3])
+#: the units Table 2's numbers (and so Table 3's) are in, per pose component
+TABLE2_PRINTED_UNITS: tuple[str, ...] = ("nm", "nm", "nm", "mrad", "mrad", "mrad")
 
 
 def table2_responses_um_urad() -> np.ndarray:
@@ -140,7 +142,7 @@ _TABLE3_SUMMARY = """
   110,73         0         0         0         0       0
   265,34         0         0         0         0       0
 """
-TABLE3_SUMMARY_ROWS: tuple[str, ...] = ("nu", "S0", "ME", "SME")
+TABLE3_SUMMARY_ROWS: tuple[str, ...] = ("ν", "S₀", "ME", "SME")
 TABLE3_SUMMARY = parse_printed(_TABLE3_SUMMARY)
 TABLE3_SUMMARY_RESOLUTION = printed_resolution(_TABLE3_SUMMARY)
 

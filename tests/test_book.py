@@ -286,3 +286,25 @@ def test_report_links_rows_to_sections_or_pages(tmp_path: Path) -> None:
     text = bookbuild.report_markdown(bookbuild.report_rows(tmp_path, chapters), chapters, link)
     assert "{ref}`Table 5 <a-s3>`" in text and "{doc}`Eq 8 </chapters/a>`" in text
     assert verdicts.COUNTS_HEADER in text and text.index("## Summary") < text.index("## Chapter 2")
+
+
+def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_directives() -> None:
+    from mechlib.pipeline.book import cells
+
+    nb = {
+        "cells": [
+            {"cell_type": "code", "metadata": {"tags": ["parameters"]}, "outputs": [],
+             "source": "# fmt: off\nseed = 1  # the seed\ngeometry = None  # from the model\n"},
+            {"cell_type": "code", "metadata": {"tags": ["injected-parameters"]}, "outputs": [],
+             "source": "# Parameters\ngeometry = {'a': 1}\nextra = 2\n"},
+            {"cell_type": "code", "metadata": {}, "outputs": [],
+             "source": "x = [1,  2]  # fmt: skip\nx\n"},
+        ]
+    }  # fmt: skip
+    out, _ = cells.prepare_notebook(nb, "p", Path("/nowhere"))
+    assert len(out["cells"]) == 2
+    params = out["cells"][0]["source"]
+    assert "fmt" not in params and "seed = 1  # the seed" in params
+    assert "geometry = {'a': 1}  # passed by the build; from the model" in params
+    assert "extra = 2  # passed by the build" in params
+    assert out["cells"][1]["source"] == "x = [1,  2]\nx\n"

@@ -86,7 +86,7 @@ def test_a_finding_whose_values_were_not_recorded_is_left_out(
     title = "**Table 5 looks like a linear analysis (our reading)**"
     assert title in landing.landing_markdown(records, "ci")
     smoke = copy.deepcopy(records)
-    del smoke["virtual_experiments"]["values"]["table5.nonlinear.max_range_pct"]
+    del smoke["virtual_experiments"]["values"]["table5.nonlinear.maxabs_over_linear_range_pct"]
     text = landing.landing_markdown(smoke, "smoke")
     assert title not in text
     assert "built with the **smoke** profile" in text
@@ -176,3 +176,12 @@ def test_a_quote_reads_a_timing_when_no_value_has_its_key() -> None:
     assert quote(records, ("nb", "a", "max")) == 3.0
     with pytest.raises(KeyError, match="recorded no value 'b'"):
         quote(records, ("nb", "b", None))
+
+
+def test_a_chapter_says_how_long_it_ran_and_how_to_run_it_again() -> None:
+    from mechlib.pipeline import provenance
+
+    lines = provenance.rerun_lines("virtual_experiments", 22.4)
+    assert "default run took 22 s on this machine" in lines
+    assert "`make run NB=virtual_experiments ARGS='-p <name> <value>'`" in lines
+    assert "not recorded" in provenance.rerun_lines("x", None)

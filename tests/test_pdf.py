@@ -22,6 +22,42 @@ PAGE = """<html><head>{head}</head><body>
 <footer>the footer's text is not content</footer></body></html>"""
 
 
+# pdftohtml -xml -zoom 3 output: fonts are declared once, on the page that first uses them
+XML = """<pdf2xml><page number="1" height="2376" width="1836">
+<fontspec id="0" size="36" family="AAAAAA+DejaVuSans" color="#000000"/>
+<fontspec id="1" size="28" family="BAAAAA+FontAwesome6Free-Solid" color="#000000"/>
+<fontspec id="2" size="15" family="Times" color="#000000"/>
+<text top="1" left="1" width="9" height="9" font="0">Body <a href="{href}">bundle</a></text>
+<text top="1" left="1" width="9" height="9" font="1">\uf019</text>
+<text top="1" left="1" width="9" height="9" font="2"><i>n</i></text>
+</page><page number="2" height="2376" width="1836">
+<fontspec id="3" size="{size}" family="CAAAAA+DejaVuSans" color="#000000"/>
+<text top="1" left="1" width="9" height="9" font="3">tiny</text>
+<text top="1" left="1" width="9" height="9" font="3"> </text>
+</page></pdf2xml>"""
+
+
+def layout(*pages: list[tuple[float, str]]) -> str:
+    """``pdftotext -bbox-layout`` output of pages, each a list of (yMin, line text)."""
+    return (
+        "<doc>"
+        + "".join(
+            '<page width="612" height="792"><flow><block>'
+            + "".join(
+                f'<line xMin="50" yMin="{y}" xMax="500" yMax="{y + 12}">'
+                + "".join(
+                    f'<word xMin="1" yMin="{y}" xMax="2" yMax="3">{w}</word>' for w in t.split()
+                )
+                + "</line>"
+                for y, t in page
+            )
+            + "</block></flow></page>"
+            for page in pages
+        )
+        + "</doc>"
+    )
+
+
 def write_page(path: Path, body: str, head: str = "") -> Path:
     path.write_text(PAGE.format(head=head, body=body), encoding="utf-8")
     return path
@@ -37,9 +73,13 @@ def test_parse_page_reads_main_only() -> None:
         PAGE.format(
             head='<link rel="next" href="b.html">',
             body='<h1>Title <a class="headerlink">#</a></h1><p>abc</p><img src="f.png">'
-            '<img src="f.svg"><span id="document-x"></span><h2>Second page</h2><h2>Sub</h2>',
+            '<img src="f.svg"><span id="document-x"></span><h2>Second page</h2><h2>Sub</h2>'
+            '<a href="_downloads/1/d%20b.zip"></a><a href="b.html#x"></a><a href="#y"></a>'
+            '<a href="https://example.org/c.zip"></a>',
         )
     )
+    assert info.files == ["_downloads/1/d%20b.zip"]  # a file, not a page, anchor or URL
+    assert pdfcheck.linked_file(info.files[0]) == "d b.zip"
     assert info.next_href == "b.html"
     assert info.titles == ["Title", "Second page"]  # "Sub" is a section, not a page title
     assert info.images == ["f.png", "f.svg"]  # the <nav>'s logo is not content
@@ -109,15 +149,85 @@ def test_check_names_each_problem_with_its_allowed_value(
     write_page(tmp_path / "index.html", '<h1>Book</h1><p>text</p><img src="f.png">')
     outputs = {
         "pdfinfo": "Pages:          0\n",
-        "pdftotext": "Book \\(x\\) text",
+        "pdftotext": "Book \\(x\\) text Show code cell source",
         "pdfimages": "header\n-----\n",
+        "pdftohtml": XML.format(size=18, href="file:///elsewhere/d.zip"),
     }
     monkeypatch.setattr(pdfcheck, "run_tool", lambda cmd, timeout=120: outputs[cmd[0]])
     problems = pdfcheck.check(tmp_path / "book.pdf", tmp_path)
     assert problems[0].startswith("0 pages, allowed [1, 60]")
     assert problems[1] == "40x30 px image: 1 in the HTML, 0 in the PDF"
     assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
-    assert len(problems) == 3
+    assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
+    assert problems[4] == "text at 6.00 pt on page 2 ('tiny'), allowed ≥ 7.0 pt"
+    assert problems[5].startswith("link to /elsewhere/d.zip: not a file beside the PDF")
+    assert len(problems) == 6
+
+
+def test_smallest_text_and_math_leave_icons_out_and_fail_below_the_limits() -> None:
+    smallest = pdfcheck.smallest_text(XML.format(size=18, href="x"))
+    assert smallest == {"text": (6.0, 2, "tiny"), "math": (5.0, 1, "n")}
+    assert pdfcheck.smallest_text(XML.format(size=21, href="x"))["text"][0] == 7.0
+    assert pdfcheck.smallest_text("<pdf2xml></pdf2xml>") == {}
+
+
+def test_captions_at_the_top_of_a_page_are_parted_from_their_figure() -> None:
+    pages = layout(
+        [(30.0, "Chapter one"), (300.0, "Figure 1 a caption below its figure")],
+        [(32.0, "Figure 2 a caption whose figure is on the page before"), (46.0, "its end")],
+        [(-900.0, "hidden text off the page"), (250.0, "Figure 3 under a vector drawing")],
+        [],  # a page of drawing only
+        [(60.0, "Figure 4 under a 30 pt drawing")],
+    )
+    assert pdfcheck.parted_captions(pages) == [
+        (2, "Figure 2 a caption whose figure is on the page before")
+    ]
+    assert pdfcheck.parted_captions(layout([(30.0, "Figures 2–5 draw it")])) == []
+
+
+def test_links_to_files_must_name_a_file_beside_the_pdf(tmp_path: Path) -> None:
+    (tmp_path / "pdf").mkdir()
+    (tmp_path / "pdf" / "d.zip").write_bytes(b"zip")
+    (tmp_path / "d.zip").write_bytes(b"zip")  # a file, but not beside the PDF
+    beside = (tmp_path / "pdf" / "d.zip").as_uri()
+    assert pdfcheck.broken_links([beside, "https://x.org/a.zip"], tmp_path / "pdf", ["d.zip"]) == []
+    problems = pdfcheck.broken_links(
+        [(tmp_path / "d.zip").as_uri()] * 2 + [(tmp_path / "pdf" / "e.zip").as_uri()],
+        tmp_path / "pdf",
+        ["d.zip"],
+    )
+    assert problems == [
+        f"link to {tmp_path / 'd.zip'}: not a file beside the PDF "
+        f"(allowed: a file in {(tmp_path / 'pdf').resolve()})",
+        f"link to {tmp_path / 'pdf' / 'e.zip'}: not a file beside the PDF "
+        f"(allowed: a file in {(tmp_path / 'pdf').resolve()})",
+        f"the book links d.zip; the PDF has no link to {(tmp_path / 'pdf').resolve() / 'd.zip'} "
+        "(allowed: a link there)",
+    ]
+
+
+def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Path) -> None:
+    (tmp_path / "_downloads").mkdir()
+    (tmp_path / "_downloads" / "d.zip").write_bytes(b"zip")
+    wide = "<tr>" + "<td>123456.789</td>" * 12 + "</tr>"
+    page = write_page(
+        tmp_path / "intro.html",
+        '<a href="intro.html#fig-1">Figure 1</a><a href="other.html#x">x</a>'
+        '<a class="reference download" href="_downloads/d.zip">data</a><a href="gone.zip">g</a>'
+        '<code><span class="pre">mechlib.doe.l2_cd</span></code>'
+        f'<table border="1" class="dataframe"><tr><th>a long header</th></tr>{wide}</table>'
+        '<table class="dataframe"><tr><th colspan="12">spans all</th></tr><tr><td>1</td></tr>'
+        "</table>",
+    )
+    text, files = pdf.print_copy(page, tmp_path / "pdf")
+    assert files == [(tmp_path / "_downloads" / "d.zip").resolve()]
+    assert '<a href="#fig-1">' in text and '<a href="other.html#x">' in text
+    assert f'href="{(tmp_path / "pdf" / "d.zip").resolve().as_uri()}"' in text
+    assert 'href="gone.zip"' in text  # no file in the build: left as it is
+    assert "mechlib.<wbr>doe.<wbr>l2_<wbr>cd" in text
+    assert text.count("print-wide") == 1  # 12 columns of 12 characters; the other is narrow
+    assert pdf.frame_chars(f"<table>{wide}</table>") == 12 * 12
+    assert pdf.frame_chars("<table><tr><th>a long header</th></tr></table>") == 6 + 2
 
 
 def test_missing_tools_are_reported(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -142,23 +252,36 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
     for book in (good, bad):
         book.mkdir()
         png(book / "f.png", (64, 48))
+    (good / "_downloads").mkdir()
+    (good / "_downloads" / "data.zip").write_bytes(b"zip")
     write_page(
         good / "index.html",
-        '<h1>First page</h1><p>Typeset by hand: x².</p><img src="f.png">',
+        '<h1>First page</h1><p>Typeset by hand: x².</p><img src="f.png">'
+        '<p><a href="_downloads/data.zip">the data</a></p>',
         head='<link rel="next" href="two.html">',
     )
     write_page(good / "two.html", "<h1>Second page</h1><p>More text.</p>")
     # no MathJax on the page: the TeX stays raw; the hidden figure is not printed
+    # and a printed toggle, 5 pt text, a caption alone at the top of page 2
     write_page(
         bad / "index.html",
-        '<h1>Broken page</h1><p>Raw \\(x^2\\) math.</p><img src="f.png" style="display:none">',
+        '<h1>Broken page</h1><p>Raw \\(x^2\\) math.</p><img src="f.png" style="display:none">'
+        '<p>Show code cell source</p><p style="font-size:5pt">small print</p>'
+        '<p style="break-before:page">Figure 1 a caption alone</p>',
     )
     pdf.build(good, tmp_path / "good.pdf")
     assert pdfcheck.pdf_pages(tmp_path / "good.pdf") == 2  # each page printed, then joined
+    assert (tmp_path / "data.zip").read_bytes() == b"zip"  # the linked file, beside the PDF
     assert pdfcheck.check(tmp_path / "good.pdf", good) == []
+    (tmp_path / "data.zip").unlink()
+    assert pdfcheck.check(tmp_path / "good.pdf", good)[0].startswith("link to ")
     pdf.build(bad, tmp_path / "bad.pdf")
     problems = pdfcheck.check(tmp_path / "bad.pdf", bad, min_pages=3)
-    assert problems[0].startswith("1 pages, allowed [3, 60]")
+    assert problems[0].startswith("2 pages, allowed [3, 60]")
     assert "64x48 px image: 1 in the HTML, 0 in the PDF" in problems
-    assert problems[-1].startswith("1 TeX math delimiters left untypeset (allowed 0)")
+    assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
+    assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
+    assert problems[4].startswith("text at 5.00 pt on page 1 ('small print'), allowed ≥ 7.0")
+    assert problems[5].startswith("page 2 begins with a caption parted from its figure")
+    assert len(problems) == 6
     assert pdf.main(["check", "--pdf", str(tmp_path / "bad.pdf"), "--html", str(bad)]) == 1

@@ -210,3 +210,21 @@ def test_shapes_that_do_not_match_are_refused_by_name() -> None:
         plotting.hexflex_stage_motions(MESH, np.stack([DISP] * 5), list("abcdef"))
     with pytest.raises(TypeError, match="ax must be a matplotlib Axes"):
         plotting.discrepancy_histogram(np.ones(3), 1.0, "x", ax="not an axes")
+
+
+def test_each_model_keeps_one_colour_and_marker_on_every_figure() -> None:
+    from mechlib.plotting import metamodels as mmplot
+
+    gp = mmplot.model_style("Gaussian process")
+    assert mmplot.model_style("Gaussian process, Sobol' 256") == gp
+    assert mmplot.model_style("reduced-order model + correction") != mmplot.model_style(
+        "reduced-order model"
+    )
+    assert mmplot.model_style("linear S_T (Eq 7), Table 4") == mmplot.model_style("linear (Eq 7)")
+    fig = mmplot.learning_curves(
+        [16, 32], [[2.0, 1.0]], ["reduced-order model + correction"], {}, 1.0, extra_runs=[42]
+    )
+    line = fig.axes[0].get_lines()[0]
+    assert list(line.get_xdata()) == [58, 74] and line.get_color() == "tab:pink"
+    with pytest.raises(ValueError, match="one count per model"):
+        mmplot.learning_curves([16], [[1.0]], ["linear"], {}, 1.0, extra_runs=[1, 2])

@@ -67,7 +67,7 @@ def test_difference_is_relative_to_the_largest_published_value() -> None:
     assert row["difference_text"] == "1 % of max |published|"
     assert row["tolerance_used"] == pytest.approx(10.0 / 50.01, rel=1e-6)
     big = report.compare_row("Table 5", "err", [0.5, 0.1], [1000.0, 3.0], cause="non-linear")
-    assert big["difference_text"] == "2e+03 × max |published|"
+    assert big["difference_text"] == "3 orders of magnitude (× 2e+03)"
     printed = report.compare_row("Table 3", "q", [0.17], [0.166667], resolution=0.005)
     assert (
         printed["difference_text"]
@@ -80,6 +80,16 @@ def test_difference_is_relative_to_the_largest_published_value() -> None:
 def test_difference_text_refuses_negative_input() -> None:
     with pytest.raises(ValueError, match="must be >= 0"):
         cat.difference_text(-1.0, 1.0)
+
+
+def test_difference_text_says_round_off_and_orders_of_magnitude_not_huge_ratios() -> None:
+    assert cat.difference_text(2e-18, 0.0279, 4.37) == "round-off (2e-18)"
+    assert cat.difference_text(1.68e4 * 19, 19, 3.71e6) == "4 orders of magnitude (× 1.7e+04)"
+    assert cat.difference_text(16.8, 1.0) == "16.8 × max |published|"
+    assert (
+        cat.difference_text(0.3, 1.0, 2.0)
+        == "30 % of max |published|; 2 × half the last printed digit"
+    )
 
 
 def test_long_arrays_are_summarised_not_truncated_lists() -> None:
@@ -164,3 +174,12 @@ def test_report_cells_give_category_tolerance_or_cause_and_a_bounded_difference(
     )
     assert check == {"published": "(check)", "ours": "ratio 2e-8", "difference": "—",
                      "verdict": "consistent by construction"}  # fmt: skip
+
+
+def test_a_vector_is_listed_by_name_when_its_entries_are_named() -> None:
+    text = cat.summarise(np.array([0.0921, 41.59]), labels=("GP, 256 runs", "linear S_T"))
+    assert text == "GP, 256 runs: 0.0921; linear S_T: 41.59"
+    row = report.Computed("T", "worst [%]", labels=("a", "b", "c")).row([1.0, 2.0, 3.0])
+    assert row["ours"] == "a: 1; b: 2; c: 3"
+    with pytest.raises(ValueError, match="labels must name each of the 2 values"):
+        cat.summarise(np.array([1.0, 2.0]), labels=("one",))

@@ -143,7 +143,9 @@ def copy_chapters(
             json.loads(nb_path.read_text()), nb_path.stem, REPO_ROOT
         )
         if made:
-            nb["cells"].append(provenance.notebook_cell(made))
+            seconds = nb.get("metadata", {}).get("papermill", {}).get("duration")
+            lines = provenance.rerun_lines(nb_path.stem, seconds)
+            nb["cells"].append(provenance.notebook_cell(f"{made}\n{lines}"))
         _write(chapters / nb_path.name, json.dumps(nb, indent=1, ensure_ascii=False) + "\n")
     return sections
 

@@ -83,8 +83,9 @@ def thesis_tables() -> dict[str, str]:
     """The transcribed thesis tables as CSV texts, by file name inside the bundle."""
     runs12 = [str(i) for i in range(1, 13)]
     runs30 = [str(i) for i in range(1, 31)]
-    printed_units = ("nm",) * 3 + ("mrad",) * 3
-    printed_t2 = [f"{r} [{u}]" for r, u in zip(pub.RESPONSES, printed_units, strict=True)]
+    printed_t2 = [
+        f"{r} [{u}]" for r, u in zip(pub.RESPONSES, pub.TABLE2_PRINTED_UNITS, strict=True)
+    ]
     t7 = (
         [n, pub.TABLE7_UNITS[n], *map(float, row)]
         for n, row in zip(pub.TABLE7_NAMES, pub.TABLE7, strict=True)

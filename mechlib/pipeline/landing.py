@@ -28,6 +28,8 @@ from mechlib.reporting import verdicts
 Link = Callable[[str, str, str], str]
 #: profile names: what ``notebooks/profiles/<name>`` may be called
 _PROFILE = re.compile(r"^[A-Za-z0-9_-]+$")
+#: the profile of the default build (each notebook's own defaults)
+DEFAULT_PROFILE = "ci"
 #: the record keys that hold a chapter's parameters
 PARAMETER_PREFIX = "parameters."
 
@@ -73,7 +75,7 @@ LEGEND = (
 )
 
 RERUN_TEXT = """\
-```{admonition} Re-run this page
+```{admonition} Re-run a chapter with your own parameters
 Each chapter is a notebook whose first cell sets its parameters.
 `make run NB=published_doe ARGS="-p n_random_designs 5000"` executes one into `build/runs/`
 without touching this build; `make book PROFILE=full` builds the whole book with a finer
@@ -208,7 +210,7 @@ def _plain(value: Any) -> str:
 
 def profile_text(records: verdicts.Records, profile: str) -> str:
     """The profile named and every chapter's recorded parameters (``parameters.*`` records)."""
-    parts = []
+    parts, silent = [], []
     for name, rec in sorted(records.items()):
         params = {
             k.removeprefix(PARAMETER_PREFIX): v["value"]
@@ -218,8 +220,22 @@ def profile_text(records: verdicts.Records, profile: str) -> str:
         if params:
             listed = "; ".join(f"`{k}` = {_plain(v)}" for k, v in params.items())
             parts.append(f"- {name}: {listed}")
-    head = f"This book was built with the **{profile}** profile. Its recorded parameters:"
-    return "\n".join([head, "", *parts]) if parts else head.replace(" Its", " No")
+        else:
+            silent.append(name)
+    if parts and silent:
+        parts.append(
+            f"- {', '.join(silent)}: no parameter recorded (each page's parameters cell shows the "
+            "values it ran with)"
+        )
+    head = (
+        "This book was built with each chapter's default parameters. The parameters each chapter "
+        "recorded:"
+        if profile == DEFAULT_PROFILE
+        else f"This book was built with the **{profile}** profile. Its recorded parameters:"
+    )
+    if parts:
+        return "\n".join([head, "", *parts])
+    return head.split(". ")[0] + ". No parameters were recorded."
 
 
 def landing_markdown(

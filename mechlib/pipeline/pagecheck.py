@@ -6,7 +6,8 @@ clean. ``make test`` runs them over ``book/`` and ``book/_build/html``.
 
 * Chapter text must not speak to developers: "issue", "make bench", "CI", "earlier version",
   "repository's history" (:data:`JARGON`) are refused in prose, except inside an admonition
-  titled "Re-run this page" (:data:`RERUN_TITLE`), where commands belong. Code is not prose.
+  titled "Re-run this page" or "Re-run a chapter …" (:data:`RERUN_TITLE`), where commands
+  belong. Code is not prose.
 * A cell output must not be a bare number, list of numbers, boolean or string repr
   (``[110.85…, 265.29…]``, a lone ``0``, ``'yes'``): a value shown to the reader needs a label
   (a table, a sentence).
@@ -34,7 +35,7 @@ JARGON: tuple[tuple[str, re.Pattern[str]], ...] = (
     ("repository's history", re.compile(r"\brepository['’]s\s+history", re.IGNORECASE)),
 )
 #: The admonition title under which commands and build words are allowed.
-RERUN_TITLE = re.compile(r"re-?run\s+this\s+page", re.IGNORECASE)
+RERUN_TITLE = re.compile(r"re-?run\s+(this\s+page|a\s+chapter)", re.IGNORECASE)
 SITE_PACKAGES = re.compile(r"site-packages")
 _NUM = r"[-+]?(?:\d+(?:\.\d*)?(?:[eE][-+]?\d+)?|\.\d+|nan|inf)"
 #: a Python string's repr ('yes', "a b"): what a cell shows when its last line is a str

@@ -5,7 +5,11 @@
     one PDF. ``DIR`` is a ``singlehtml`` build (one page: the whole book, one table of contents)
     or the multi-page ``html`` build (each page printed, then joined with poppler's
     ``pdfunite``). MathJax runs before the print (``--virtual-time-budget``) from the copy
-    inside the build, with the network off.
+    inside the build, with the network off. Each page is printed from a copy (see
+    :func:`print_copy`): links to the page itself become in-document anchors, links to files of
+    the build (the data bundle) point to a copy of the file beside the PDF, and code names may
+    break after their dots and underscores. The print layout itself is ``@media print`` in
+    ``book/_static/book.css``.
 
 ``python -m mechlib.pipeline.pdf check --pdf book.pdf --html DIR [--min-pages N]``
     exit 1 when the PDF misses part of the book (see :mod:`mechlib.pipeline.pdfcheck`): each
@@ -22,20 +26,30 @@ missing.
 from __future__ import annotations
 
 import argparse
+import html
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from urllib.parse import unquote, urlsplit
 
 from mechlib.pipeline.book import browser as chromium
 from mechlib.pipeline.pdfcheck import ToolMissing, check, page_order, pdf_pages, run_tool
 
-POPPLER = ("pdfinfo", "pdftotext", "pdfimages", "pdfunite")
+POPPLER = ("pdfinfo", "pdftotext", "pdfimages", "pdftohtml", "pdfunite")
 # the browser flags of the HTML check (offline, root, no first-run chatter), and no page header
 FLAGS = (*chromium.FLAGS, "--no-pdf-header-footer")
 VIRTUAL_TIME_MS = 30000  # virtual time for the page's scripts (MathJax) before the print
 PRINT_TIMEOUT_S = 300  # wall-clock limit of one page's print
+LINK = re.compile(r'(<a\s[^>]*?href=")([^"]*)(")')
+CODE = re.compile(r'(<span class="pre">)([^<]*)(</span>)')  # the words of inline code
+FRAME = re.compile(r'<table [^>]*class="dataframe[^"]*"[^>]*>.*?</table>', re.DOTALL)
+CELL = re.compile(r"<t([hd])\b([^>]*)>(.*?)</t[hd]>", re.DOTALL)
+# a data frame wider than this many characters of its font (8 pt: a portrait page's width) is
+# printed on a landscape page (book.css: table.print-wide); header cells wrap between words
+PORTRAIT_CHARS = 98
 
 
 find_browser = chromium.find_browser
@@ -67,6 +81,80 @@ def print_page(browser: str, page: Path, out: Path, profile: Path) -> None:
         )
 
 
+def local_file(page: Path, href: str) -> Path | None:
+    """The file of the build a link of ``page`` names (None: a page, an anchor, a URL)."""
+    parts = urlsplit(html.unescape(href))
+    if parts.scheme or parts.netloc or not parts.path or parts.path.endswith(".html"):
+        return None
+    target = (page.parent / unquote(parts.path)).resolve()
+    return target if target.is_file() else None
+
+
+def frame_chars(table: str) -> int:
+    """Width of a data frame in characters: each column's longest cell (a header's longest word)
+    and two characters of padding (column-spanning header cells are left out)."""
+    widths: dict[int, int] = {}
+    for row in re.findall(r"<tr\b.*?</tr>", table, re.DOTALL):
+        for col, (kind, attrs, body) in enumerate(CELL.findall(row)):
+            if "colspan" in attrs:
+                break
+            words = html.unescape(re.sub(r"<[^>]*>", " ", body)).split() or [""]
+            wide = max(map(len, words)) if kind == "h" else len(" ".join(words))
+            widths[col] = max(widths.get(col, 0), wide + 2)
+    return sum(widths.values())
+
+
+def mark_wide(m: re.Match[str]) -> str:
+    """A data frame's table, its class ``print-wide`` added when it is wider than a page."""
+    table = m.group(0)
+    if frame_chars(table) <= PORTRAIT_CHARS:
+        return table
+    return table.replace('class="dataframe', 'class="print-wide dataframe', 1)
+
+
+def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
+    """The HTML of ``page`` as printed, and the files its links need beside the PDF.
+
+    Links to ``page`` itself (``intro.html#x``) become in-document anchors (``#x``), which
+    Chromium prints as links inside the PDF; a link to a file of the build (the data bundle)
+    points to the file's copy in ``pdf_dir`` (an absolute ``file:`` URI: Chromium writes no
+    relative link); ``<wbr>`` after each dot and underscore of inline code lets a long name
+    (``mechlib.doe.centered_l2``) break there in a narrow table column; a data frame
+    wider than a portrait page (:func:`frame_chars`) gets the class ``print-wide``.
+
+    Parameters
+    ----------
+    page : Path
+        The HTML page.
+    pdf_dir : Path
+        The folder of the PDF.
+
+    Returns
+    -------
+    str
+        The HTML to print.
+    list of Path
+        The build's files it links to (to copy into ``pdf_dir``).
+    """
+    files: list[Path] = []
+
+    def relink(m: re.Match[str]) -> str:
+        href = m.group(2)
+        parts = urlsplit(html.unescape(href))
+        if parts.path == page.name and not (parts.scheme or parts.netloc):
+            href = f"#{parts.fragment}"
+        elif (target := local_file(page, href)) is not None:
+            files.append(target)
+            href = html.escape((pdf_dir.resolve() / target.name).as_uri())
+        return f"{m.group(1)}{href}{m.group(3)}"
+
+    text = LINK.sub(relink, page.read_text(encoding="utf-8"))
+    text = CODE.sub(
+        lambda m: m.group(1) + re.sub(r"([._])", r"\1<wbr>", m.group(2)) + m.group(3), text
+    )
+    return FRAME.sub(mark_wide, text), files
+
+
 def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     """Print the book in ``html_dir`` to the PDF ``out``.
 
@@ -83,7 +171,7 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     Returns
     -------
     Path
-        ``out``.
+        ``out``; the files its links open (the data bundle) are copied beside it.
 
     Raises
     ------
@@ -99,7 +187,15 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     with tempfile.TemporaryDirectory() as tmp:
         parts = [Path(tmp) / f"{i:03d}.pdf" for i in range(len(pages))]
         for i, (page, part) in enumerate(zip(pages, parts, strict=True)):
-            print_page(browser, page, part, Path(tmp) / f"profile{i}")
+            text, files = print_copy(page, out.parent)
+            for file in files:
+                shutil.copyfile(file, out.parent / file.name)
+            copy = page.with_name(f".print-{page.name}")  # beside the page: its links resolve
+            copy.write_text(text, encoding="utf-8")
+            try:
+                print_page(browser, copy, part, Path(tmp) / f"profile{i}")
+            finally:
+                copy.unlink()
         if len(parts) == 1:
             shutil.copyfile(parts[0], out)
         else:

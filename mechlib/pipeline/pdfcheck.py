@@ -8,9 +8,13 @@
 * a raster figure (``<img>`` of a PNG, JPEG or GIF in a page's ``<main>``) missing from the
   PDF: every image size (width × height in pixels) must occur in ``pdfimages -list`` at least
   as often as in the HTML — Chromium embeds an image at its own pixel size;
-* formulas left as TeX: ``\\(``, ``\\[`` or ``$$`` in ``pdftotext``'s output.
+* formulas left as TeX: ``\\(``, ``\\[`` or ``$$`` in ``pdftotext``'s output;
+* for paper: code-cell toggles ("Show code cell source"); text under 7 pt or math under 5 pt
+  (``MIN_FONT_PT``); a caption parted from its figure; a ``file:`` link to no file beside
+  the PDF, or a file the book links to (the data bundle) that the PDF does not link there.
 
-Reads the PDF with Debian's ``poppler-utils`` (``pdfinfo``, ``pdftotext``, ``pdfimages``).
+Reads the PDF with Debian's ``poppler-utils`` (``pdfinfo``, ``pdftotext``, ``pdfimages``,
+``pdftohtml``).
 """
 
 from __future__ import annotations
@@ -34,6 +38,14 @@ MAX_PAGES_PER_DOCUMENT = 60  # a book page (chapter) printing longer than this i
 RASTER = (".png", ".jpg", ".jpeg", ".gif")
 RAW_MATH = re.compile(r"\\\(|\\\[|\$\$")
 INLINE_MATH = re.compile(r"\\\(.*?\\\)")  # math in a title: typeset, so not compared
+# the smallest text a printed page may hold; math's second-level scripts as in a 10 pt LaTeX book
+MIN_FONT_PT = {"text": 7.0, "math": 5.0}
+TOGGLE = re.compile(r"(?:Show|Hide) code cell (?:source|outputs?|content)")
+CAPTION = re.compile(r"Figure\s+\d+\b")  # numfig_format of book/_config.yml
+CAPTION_TOP_PT = 24.0  # a caption this close to the top margin has no figure above it
+ICON_FONTS = ("FontAwesome",)  # glyphs of icons, not text
+ZOOM = 3  # pdftohtml's largest zoom: font sizes in thirds of a point
+FONTSPEC = re.compile(r'<fontspec id="(\d+)" size="(-?\d+)" family="([^"]*)"')
 # parts of a page that are not its content: navigation, search, sidebars, headers
 SKIPPED_TAGS = ("nav", "header", "footer", "script", "style", "noscript", "template", "dialog")
 
@@ -52,6 +64,7 @@ class PageInfo:
     images: list[str] = field(default_factory=list)  # src of <img> in the content
     text_chars: int = 0
     documents: int = 0  # singlehtml: <span id="document-…">, one per page but the root
+    files: list[str] = field(default_factory=list)  # href of links to files (not pages)
 
 
 class _PageParser(HTMLParser):
@@ -80,6 +93,8 @@ class _PageParser(HTMLParser):
             return
         elif tag == "img" and a.get("src"):
             self.info.images.append(a["src"])
+        elif tag == "a" and linked_file(a.get("href", "")):
+            self.info.files.append(a["href"])
         elif tag == "h1" or (tag in ("h2", "h3") and self._title_next):
             self._h1, self._title_next = [], False
 
@@ -100,6 +115,14 @@ class _PageParser(HTMLParser):
         if self._h1 is not None:
             self._h1.append(data)
         self.info.text_chars += len(data.strip())
+
+
+def linked_file(href: str) -> str | None:
+    """The file name a relative link to a file names (None: a page, an anchor, a URL)."""
+    parts = urlsplit(href)
+    if parts.scheme or parts.netloc or not parts.path or parts.path.endswith(".html"):
+        return None
+    return unquote(parts.path).rsplit("/", 1)[-1] or None
 
 
 def parse_page(html: str) -> PageInfo:
@@ -164,21 +187,24 @@ class HtmlSummary:
     titles: list[str]
     image_sizes: Counter[tuple[int, int]]
     text_chars: int
+    files: list[str] = field(default_factory=list)  # names of the files the pages link to
 
 
 def summarize_html(html_dir: Path) -> HtmlSummary:
     """Page titles, raster image sizes and text size of the book's pages in reading order."""
     sizes: Counter[tuple[int, int]] = Counter()
     titles: list[str] = []
+    files: list[str] = []
     chars = documents = 0
     pages = page_order(html_dir)
     for page in pages:
         info = parse_page(page.read_text(encoding="utf-8"))
         titles += [t for t in info.titles if t not in titles]
+        files += [n for n in map(linked_file, info.files) if n and n not in files]
         chars += info.text_chars
         documents += info.documents + 1  # singlehtml: the root page has no marker
         sizes.update(s for s in (image_size(page, src) for src in info.images) if s)
-    return HtmlSummary(len(pages), documents, titles, sizes, chars)
+    return HtmlSummary(len(pages), documents, titles, sizes, chars, files)
 
 
 def page_range(summary: HtmlSummary, min_pages: int = 1) -> tuple[int, int]:
@@ -226,6 +252,64 @@ def missing_images(
         f"{w}x{h} px image: {n} in the HTML, {pdf_sizes[w, h]} in the PDF"
         for (w, h), n in sorted(html_sizes.items())
         if pdf_sizes[w, h] < n
+    ]
+
+
+def smallest_text(xml: str) -> dict[str, tuple[float, int, str]]:
+    """Smallest font size in points, its page and its text, of ``"text"`` and of ``"math"``.
+
+    Reads ``pdftohtml -xml -zoom 3`` output (sizes to a third of a point). Math is set in fonts
+    with no name (MathJax's: Chromium embeds them as unnamed Type 3 fonts; every other font is
+    a named subset, ``ABCDEF+DejaVuSans``); icon fonts are left out.
+    """
+    fonts: dict[str, tuple[float, str]] = {}
+    smallest: dict[str, tuple[float, int, str]] = {}
+    for page in re.finditer(r'<page number="(\d+)".*?</page>', xml, re.DOTALL):
+        for fid, size, family in FONTSPEC.findall(page.group(0)):
+            fonts[fid] = int(size) / ZOOM, family
+        for fid, body in re.findall(r'<text [^>]*font="(\d+)"[^>]*>(.*?)</text>', page.group(0)):
+            (size, family), words = fonts[fid], " ".join(re.sub(r"<[^>]*>", "", body).split())
+            kind = "text" if "+" in family else "math"
+            icon = any(name in family for name in ICON_FONTS)
+            if words and not icon and size < smallest.get(kind, (1e9,))[0]:
+                smallest[kind] = (size, int(page.group(1)), words)
+    return smallest
+
+
+def parted_captions(layout: str) -> list[tuple[int, str]]:
+    """Page and first line of each caption parted from its figure (``pdftotext -bbox-layout``).
+
+    A caption follows its figure: one that is a page's first line, within ``CAPTION_TOP_PT``
+    of the highest first line of any page, has its figure on the page before (lines above
+    the page, text hidden off it, are left out).
+    """
+    firsts = []
+    for page in layout.split("<page ")[1:]:
+        lines = [
+            (float(y), " ".join(re.findall(r"<word [^>]*>([^<]*)</word>", body)))
+            for y, body in re.findall(r'<line [^>]*yMin="([-\d.]+)"[^>]*>(.*?)</line>', page, re.S)
+        ]
+        firsts.append(min((ln for ln in lines if ln[1] and ln[0] >= 0), default=None))
+    top = min((f[0] for f in firsts if f), default=0.0)
+    return [
+        (n, f[1])
+        for n, f in enumerate(firsts, start=1)
+        if f and f[0] <= top + CAPTION_TOP_PT and CAPTION.match(f[1])
+    ]
+
+
+def broken_links(hrefs: list[str], pdf_dir: Path, files: list[str]) -> list[str]:
+    """One line per ``file:`` link not to a file beside the PDF, or a linked file not linked."""
+    where = Path(pdf_dir).resolve()
+    targets = [Path(unquote(urlsplit(h).path)) for h in hrefs if h.startswith("file:")]
+    return [
+        f"link to {t}: not a file beside the PDF (allowed: a file in {where})"
+        for t in dict.fromkeys(targets)
+        if t.parent != where or not t.is_file()
+    ] + [
+        f"the book links {name}; the PDF has no link to {where / name} (allowed: a link there)"
+        for name in files
+        if where / name not in targets
     ]
 
 
@@ -296,4 +380,19 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
         problems.append(
             f"{len(raw)} TeX math delimiters left untypeset (allowed 0), e.g. {raw[0]!r}"
         )
-    return problems
+    toggles = TOGGLE.findall(text)
+    if toggles:
+        problems.append(f"{len(toggles)} code-cell toggles printed ({toggles[0]!r}), allowed 0")
+    xml = run_tool(["pdftohtml", "-xml", "-i", "-stdout", "-zoom", str(ZOOM), str(pdf)])
+    problems += [
+        f"{kind} at {pt:.2f} pt on page {n} ({words[:40]!r}), allowed ≥ {MIN_FONT_PT[kind]} pt"
+        for kind, (pt, n, words) in smallest_text(xml).items()
+        if pt < MIN_FONT_PT[kind]
+    ]
+    layout = run_tool(["pdftotext", "-bbox-layout", "-enc", "UTF-8", str(pdf), "-"])
+    problems += [
+        f"page {n} begins with a caption parted from its figure ({line[:40]!r}), allowed: none"
+        for n, line in parted_captions(layout)
+    ]
+    hrefs = re.findall(r'<a href="([^"]*)"', xml)
+    return problems + broken_links(hrefs, Path(pdf).parent, summary.files)

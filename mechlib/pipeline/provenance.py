@@ -93,6 +93,21 @@ def block(made: str) -> str:
     return f"\n```{{admonition}} {BLOCK_TITLE}\n:class: dropdown\n\n{made}\n```\n"
 
 
+def rerun_lines(name: str, seconds: float | None) -> str:
+    """Markdown lines for a chapter's provenance box: how long its default run took here and the
+    command that runs it again with a reader's parameters."""
+    took = (
+        f"- this page's default run took {seconds:.0f} s on this machine, its finite-element runs "
+        "read from the results store (a run with new forces or a new geometry solves them anew)"
+        if seconds is not None
+        else "- this page's run time was not recorded"
+    )
+    return (
+        f"{took}\n- run it again with your own parameters (the names and ranges are in its first "
+        f"code cell): `make run NB={name} ARGS='-p <name> <value>'`, into `build/runs/`"
+    )
+
+
 def notebook_cell(made: str) -> dict[str, object]:
     """A markdown cell holding :func:`block`, for the end of a chapter notebook."""
     return {"cell_type": "markdown", "id": "provenance", "metadata": {}, "source": block(made)}

@@ -43,7 +43,7 @@ def selected_poses(
         ax.plot(t[:, 0], t[:, 1], "kx", ms=5, label="traditional (shared)")
         ax.set(title=name, xlabel="x [m]", ylabel="y [m]", aspect="equal")
     panels[-1].legend(fontsize=7, loc="center left", bbox_to_anchor=(1.02, 0.5))
-    fig.suptitle("Figure B1: poses selected by active calibration (x–y projection)")
+    fig.suptitle("Poses selected by active calibration (x–y projection)")
     return fig
 
 
@@ -65,7 +65,7 @@ def parameter_errors(
         ax.set_xticks(x, names[m], rotation=90, fontsize=6)
         ax.set(title=m, ylabel="|error| / disturbance σ")
     panels[0].legend(fontsize=7, ncols=3)
-    fig.suptitle("Figure B2: parameter errors before and after calibration (one seeded draw)")
+    fig.suptitle("Parameter errors before and after calibration (one seeded draw)")
     return fig
 
 
@@ -94,9 +94,7 @@ def error_maps(
             )
             fig.colorbar(sc, ax=ax, label="µm")
             ax.set(title=f"{m}: {label}", xlabel="x [m]", ylabel="y [m]", aspect="equal")
-    fig.suptitle(
-        "Figure B3: position error over a workspace slice (RMS over the trials after calibration)"
-    )
+    fig.suptitle("Position error over a workspace slice (RMS over the trials after calibration)")
     return fig
 
 
@@ -124,7 +122,7 @@ def error_curves(rows: Sequence[Mapping[str, float]], mechs: Sequence[str], axes
         ax_s.set(xscale="log", xlabel=f"σ [m, rad] ({n0} poses per leg)")
         ax_n.set(xlabel=f"D&C poses per leg (σ = {s0:g})")
     panels[0, 1].legend(fontsize=7)
-    fig.suptitle("Figure B4: error against measurement noise and pose budget")
+    fig.suptitle("Error against measurement noise and pose budget")
     return fig
 
 
@@ -153,5 +151,5 @@ def costs(
     b.legend(fontsize=7)
     for m, x, y in zip(names, n, flop_ratio, strict=True):
         a.annotate(m, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
-    fig.suptitle("Figure B5: costs against the number of legs")
+    fig.suptitle("Costs against the number of legs")
     return fig

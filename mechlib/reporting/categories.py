@@ -10,6 +10,8 @@ finding of ours (:data:`CAT_OURS`) is never counted with them.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 #: an independent computation agrees with the published value within the stated tolerance
@@ -68,9 +70,17 @@ LIST_MAX = 6
 #: significant digits of listed values and of the difference measure
 VALUE_DIGITS = 6
 DIFF_DIGITS = 3
+#: a difference within this share of the largest published value is floating-point round-off
+ROUND_OFF = 1e-12
+#: from this many times the largest published value on, a difference is said in orders of magnitude
+ORDERS_FROM = 100.0
+#: the ratio to half the last printed digit is shown up to this value (beyond it adds nothing)
+RESOLUTION_SHOWN = 1000.0
 
 
-def summarise(values: np.ndarray, digits: int = VALUE_DIGITS) -> str:
+def summarise(
+    values: np.ndarray, digits: int = VALUE_DIGITS, labels: Sequence[str] | None = None
+) -> str:
     """A Published/Ours cell: up to :data:`LIST_MAX` values listed, more summarised.
 
     Parameters
@@ -80,12 +90,25 @@ def summarise(values: np.ndarray, digits: int = VALUE_DIGITS) -> str:
     digits : int
         Significant digits of listed values.
 
+    labels : sequence of str, optional
+        One name per value: the values are then listed by name, ``"GP: 0.0921; PCE: 1.56"``
+        (semicolons, so that names may hold commas), however many.
+
     Returns
     -------
     str
         ``"1, 2.5"``, or ``"72 values (12 × 6) from -1 to 1, max |x| = 1"``: never a repr.
+
+    Raises
+    ------
+    ValueError
+        For labels that are not one per value.
     """
     flat = values.ravel()
+    if labels is not None:
+        if len(labels) != flat.size:
+            raise ValueError(f"labels must name each of the {flat.size} values, got {len(labels)}")
+        return "; ".join(f"{name}: {v:.{digits}g}" for name, v in zip(labels, flat, strict=True))
     if flat.size <= LIST_MAX:
         return ", ".join(f"{v:.{digits}g}" for v in flat)
     shape = " × ".join(str(n) for n in values.shape)
@@ -113,8 +136,12 @@ def difference_text(
     Returns
     -------
     str
-        E.g. ``"0.0294 % of max |published|"`` or ``"1.66e+03 × max |published|"``, with the
-        printed-resolution ratio appended; :data:`DIFF_DIGITS` significant digits.
+        ``"round-off (2e-16)"`` when the difference is floating-point round-off of the published
+        value (:data:`ROUND_OFF`); else ``"0.0294 % of max |published|"``, ``"16.8 × max
+        |published|"`` or, beyond :data:`ORDERS_FROM` times, ``"4 orders of magnitude
+        (× 1.7e+04)"``;
+        with the printed-resolution ratio appended while it is at most :data:`RESOLUTION_SHOWN`
+        (beyond, the relative measure says it all). :data:`DIFF_DIGITS` significant digits.
     """
     if max_abs_diff < 0 or published_scale < 0:
         raise ValueError(
@@ -123,14 +150,19 @@ def difference_text(
     d = DIFF_DIGITS
     if published_scale == 0:
         text = f"{max_abs_diff:.{d}g} (published values all 0)"
+    elif max_abs_diff == 0:
+        return "none (equal)"
+    elif max_abs_diff <= ROUND_OFF * published_scale:
+        return f"round-off ({max_abs_diff:.1g})"
     else:
         rel = max_abs_diff / published_scale
-        text = (
-            f"{100 * rel:.{d}g} % of max |published|"
-            if rel <= 1
-            else f"{rel:.{d}g} × max |published|"
-        )
-    if resolution_ratio is not None:
+        if rel <= 1:
+            text = f"{100 * rel:.{d}g} % of max |published|"
+        elif rel < ORDERS_FROM:
+            text = f"{rel:.{d}g} × max |published|"
+        else:
+            text = f"{np.floor(np.log10(rel)):.0f} orders of magnitude (× {rel:.2g})"
+    if resolution_ratio is not None and resolution_ratio <= RESOLUTION_SHOWN:
         text += f"; {resolution_ratio:.{d}g} × half the last printed digit"
     return text
 

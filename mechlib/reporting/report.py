@@ -15,7 +15,7 @@ report page. A verdict is never typed: it follows from the numbers and tolerance
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import partial
 from typing import Any
@@ -213,13 +213,16 @@ def check_row(
     }
 
 
-def computed_row(artefact: str, quantity: str, ours: object) -> dict[str, Any]:
-    """A row for a number the thesis does not publish (ours only)."""
+def computed_row(
+    artefact: str, quantity: str, ours: object, labels: Sequence[str] | None = None
+) -> dict[str, Any]:
+    """A row for a number the thesis does not publish (ours only), its values named by
+    ``labels`` when given (see :func:`mechlib.reporting.categories.summarise`)."""
     return {
         "artefact": artefact,
         "quantity": quantity,
         "published": "—",
-        "ours": cat.summarise(np.asarray(ours, dtype=float)),
+        "ours": cat.summarise(np.asarray(ours, dtype=float), labels=labels),
         **_NO_DIFFERENCE,
         "verdict": COMPUTED,
         "category": cat.CAT_COMPUTED,
@@ -344,14 +347,15 @@ class Check:
 
 @dataclass(frozen=True)
 class Computed:
-    """A :func:`computed_row` waiting for our value."""
+    """A :func:`computed_row` waiting for our value; ``labels`` names its values."""
 
     artefact: str
     quantity: str
+    labels: tuple[str, ...] | None = None
 
     def row(self, ours: object) -> dict[str, Any]:
         """The row for our value ``ours``."""
-        return computed_row(self.artefact, self.quantity, ours)
+        return computed_row(self.artefact, self.quantity, ours, self.labels)
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,10 @@
 The notebooks stay plain (no presentation tags to maintain by hand); the book build applies, by
 rule, what each cell shows:
 
-* the ``parameters`` cell (and papermill's injected one) stays as it is: readers change it;
+* the ``parameters`` cell stays visible: readers change it; papermill's injected cell (the values
+  a chapter takes from another's record) is merged into it, each injected value replacing its
+  default on the same line, so the page shows one parameters cell with the values it ran with;
+* formatter directives (``# fmt: off``, ``# fmt: skip``) are dropped from every cell shown;
 * a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.text(...)``,
   ``rec.save()``, ``glue(..., display=False)``, prints of what those return, and the named
   tolerances of the records (assignments to UPPER_CASE names) — is removed (``remove-cell``);
@@ -40,6 +43,11 @@ KNOWN_WARNINGS = (
 ABSOLUTE_PATH = re.compile(r"(?<![\w.~/:-])/(?:[\w.+-]+/)+[\w.+-]*")
 RECORDER_METHODS = frozenset({"value", "text", "save"})
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
+#: a formatter directive: a whole line ``# fmt: off`` or a trailing ``  # fmt: skip``
+_FMT_LINE = re.compile(r"^\s*#\s*fmt:\s*(off|on|skip)\s*$")
+_FMT_TRAIL = re.compile(r"\s*#\s*fmt:\s*skip\s*$")
+#: ``name = value`` at the start of a parameters line
+_ASSIGNED = re.compile(r"^([A-Za-z_]\w*)\s*=")
 _FENCE = re.compile(r"^\s*(```|~~~)")
 
 
@@ -251,7 +259,7 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
         Paths below it are shown relative to it.
     """
     nb = copy.deepcopy(nb)
-    cells = nb.get("cells", [])
+    cells = merge_injected(nb.get("cells", []))
     recorders = recorder_names(
         "".join(c.get("source", "")) for c in cells if c.get("cell_type") == "code"
     )
@@ -267,6 +275,7 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
             continue
         if cell.get("cell_type") != "code":
             continue
+        cell["source"] = strip_formatter_directives("".join(cell.get("source", "")))
         cell.setdefault("metadata", {})["tags"] = cell_tags(cell, recorders)
         cell["outputs"] = clean_outputs(cell.get("outputs", []), repo_root)
         figure = figures.figure_metadata(name, cell)
@@ -276,6 +285,40 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
             out_cells += [rest] if rest else []
     nb["cells"] = out_cells
     return nb, sections
+
+
+def strip_formatter_directives(source: str) -> str:
+    """A cell's source without ``# fmt: off/on`` lines and trailing ``# fmt: skip`` comments."""
+    lines = [_FMT_TRAIL.sub("", line) for line in source.splitlines() if not _FMT_LINE.match(line)]
+    return "\n".join(lines) + ("\n" if source.endswith("\n") else "")
+
+
+def merge_injected(cells: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The cells with papermill's injected parameters merged into the ``parameters`` cell: each
+    injected ``name = value`` replaces that name's default line (its comment kept, marked as
+    passed by the build); a name the cell does not define is appended. Without an injected cell,
+    the cells as given."""
+    tags = [c.get("metadata", {}).get("tags", []) for c in cells]
+    injected = [i for i, t in enumerate(tags) if "injected-parameters" in t]
+    defaults = [i for i, t in enumerate(tags) if "parameters" in t]
+    if not injected or not defaults:
+        return cells
+    values = {}
+    for line in "".join(cells[injected[0]].get("source", "")).splitlines():
+        m = _ASSIGNED.match(line)
+        if m:
+            values[m.group(1)] = line.strip()
+    lines = "".join(cells[defaults[0]].get("source", "")).splitlines()
+    for k, line in enumerate(lines):
+        m = _ASSIGNED.match(line)
+        if m and m.group(1) in values:
+            comment = line.split("  # ", 1)[1] if "  # " in line else ""
+            note = "passed by the build" + (f"; {comment}" if comment else "")
+            lines[k] = f"{values.pop(m.group(1))}  # {note}"
+    lines += [f"{v}  # passed by the build" for v in values.values()]
+    merged = copy.deepcopy(cells[defaults[0]])
+    merged["source"] = "\n".join(lines) + "\n"
+    return [merged if i == defaults[0] else c for i, c in enumerate(cells) if i != injected[0]]
 
 
 def split_figure(cell: dict[str, Any]) -> dict[str, Any] | None:
