@@ -137,10 +137,38 @@ def input_arguments(
     return ["-y", yaml.safe_dump(values, sort_keys=False)] if values else []
 
 
+#: how often a notebook's kernel is started when it dies before running any cell (two kernels
+#: started at the same moment can race for their ports: seen once in a clean-clone test run)
+KERNEL_START_ATTEMPTS = 3
+#: what nbclient says when the kernel died before it ran anything
+_KERNEL_DIED = "Kernel died before replying to kernel_info"
+
+
+def kernel_died_at_start(stderr: str) -> bool:
+    """Whether papermill's ``stderr`` says the kernel died before running any cell (a start
+    failure, which a new attempt may not meet; a failing cell is never retried)."""
+    return _KERNEL_DIED in stderr
+
+
 def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = ()) -> int:
     """Execute ``notebook`` into ``output`` with papermill ``args`` (a profile's ``-f`` file …),
     its record into ``records`` and its chapter inputs read from there; papermill's exit code."""
     records = Path(records).resolve()  # absolute: the kernel runs in the notebooks' folder
     inputs = input_arguments(Path(notebook).stem, records, given_parameters(args), strict=True)
     cmd = papermill_command(Path(notebook), Path(output), [*inputs, *args])
-    return subprocess.run(cmd, env=dict(os.environ, **{RECORDS_ENV: str(records)})).returncode
+    env = dict(os.environ, **{RECORDS_ENV: str(records)})
+    for attempt in range(KERNEL_START_ATTEMPTS):
+        proc = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
+        said = []
+        for line in proc.stderr:  # passed on as it comes, and kept
+            sys.stderr.write(line)
+            said.append(line)
+        if proc.wait() == 0 or not kernel_died_at_start("".join(said)):
+            break
+        name = Path(notebook).name
+        print(
+            f"execute: the kernel of {name} died before it started (attempt {attempt + 1} of "
+            f"{KERNEL_START_ATTEMPTS}); starting it again",
+            flush=True,
+        )
+    return proc.returncode

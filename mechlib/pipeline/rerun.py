@@ -17,7 +17,12 @@ from pathlib import Path
 from mechlib.params import check_int
 from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
 from mechlib.pipeline.chapters import in_order, upstream
-from mechlib.pipeline.execute import input_arguments, papermill_command
+from mechlib.pipeline.execute import (
+    KERNEL_START_ATTEMPTS,
+    input_arguments,
+    kernel_died_at_start,
+    papermill_command,
+)
 from mechlib.pipeline.references import compare
 from mechlib.reporting.records import load
 
@@ -108,17 +113,21 @@ def _execute(
 ) -> None:
     inputs = input_arguments(nb.stem, out / "records", strict=True)
     cmd = papermill_command(nb, out / nb.name, inputs, python=python)
-    with _STARTING:  # a failure seen meanwhile stops this chapter before its process starts
-        if stop.is_set():
-            return
-        print(f"re-run: executing {nb.name}", flush=True)
-        proc = subprocess.Popen(
-            cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
-        )
-        procs[nb.stem] = proc
-    _, stderr = proc.communicate()
-    del procs[nb.stem]
-    done = subprocess.CompletedProcess(cmd, proc.returncode, "", stderr)
+    for _attempt in range(KERNEL_START_ATTEMPTS):
+        with _STARTING:  # a failure seen meanwhile stops this chapter before its process starts
+            if stop.is_set():
+                return
+            print(f"re-run: executing {nb.name}", flush=True)
+            proc = subprocess.Popen(
+                cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+            )
+            procs[nb.stem] = proc
+        _, stderr = proc.communicate()
+        del procs[nb.stem]
+        done = subprocess.CompletedProcess(cmd, proc.returncode, "", stderr)
+        if done.returncode == 0 or stop.is_set() or not kernel_died_at_start(stderr):
+            break
+        print(f"re-run: the kernel of {nb.name} died before it started; starting it again")
     if done.returncode != 0:
         tail = "\n".join(done.stderr.splitlines()[-20:])
         raise RuntimeError(
