@@ -114,14 +114,15 @@ book: $(EXECUTED)
 
 # --- tests ------------------------------------------------------------------------------------
 unit: $(STAMP)
-	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py --ignore=tests/test_book_html.py
+	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py --ignore=tests/test_book_html.py \
+	  --ignore=tests/test_explorer_browser.py
 
 check-records: $(EXECUTED)
 	$(VENV)/bin/pytest -q tests/test_records.py
 
 # the built HTML: no network requests, no machine paths or warnings, links resolve (after `make book`)
 check-book: $(STAMP)
-	MECHLIB_REQUIRE_BOOK=1 $(VENV)/bin/pytest -q tests/test_book_html.py
+	MECHLIB_REQUIRE_BOOK=1 $(VENV)/bin/pytest -q tests/test_book_html.py tests/test_explorer_browser.py
 
 # every built page in headless Chromium from file:// with the network off: math typeset, images
 # loaded, glued numbers present (after `make book`)
@@ -214,7 +215,7 @@ references: $(EXECUTED)
 # the non-linear and chapter sections time the geometry the HexFlex notebook identifies (its
 # record); without it they would fall back to the bench geometry, a different model
 comma := ,
-BENCH_ON_MODEL := $(if $(ONLY),$(filter nonlinear chapter reuse rom,$(subst $(comma), ,$(ONLY))),all)
+BENCH_ON_MODEL := $(if $(ONLY),$(filter nonlinear chapter reuse rom dask,$(subst $(comma), ,$(ONLY))),all)
 bench: $(STAMP) $(if $(BENCH_ON_MODEL),$(BUILD)/executed/hexflex_model.ipynb)
 	MECHLIB_RECORDS=$(abspath $(BUILD)/records) $(PY) -m mechlib.bench $(if $(ONLY),--only $(ONLY))
 

@@ -28,6 +28,9 @@ FE_LOG_ENV = "MECHLIB_FE_LOG"
 #: set to "1": a chapter's inputs are read from ``$MECHLIB_RECORDS`` only, never from the default
 #: build's records (the determinism re-run, which must not read the first run's)
 RECORDS_STRICT_ENV = "MECHLIB_RECORDS_STRICT"
+#: file that FE campaigns report their progress to, one JSON line an event (unset: none); the
+#: build sets it for each notebook it executes and shows the progress on its own terminal
+PROGRESS_ENV = "MECHLIB_PROGRESS"
 
 
 def records_dir() -> Path:
@@ -38,6 +41,12 @@ def records_dir() -> Path:
 def fe_cache_dir() -> Path:
     """Folder of cached FE results: ``$MECHLIB_FE_CACHE`` or ``<repo>/build/cache/experiments``."""
     return Path(os.environ.get(FE_CACHE_ENV, DEFAULT_BUILD / "cache" / "experiments"))
+
+
+def progress_path() -> Path | None:
+    """File that FE campaigns report their progress to (``$MECHLIB_PROGRESS``), or ``None``."""
+    value = os.environ.get(PROGRESS_ENV)
+    return Path(value) if value else None
 
 
 def fe_log_path() -> Path | None:

@@ -35,7 +35,7 @@ def test_bundle_holds_the_thesis_tables_every_record_and_the_runs(tmp_path: Path
     assert table7[1] == ["A1x", "m", "-0.5", "-0.4988"] and table7[3][1] == ""
     assert runs[0][:2] == ["run", "T1D1 [N]"] and len(runs) == 13
     assert [float(v) for v in runs[1][1:7]] == pub.TABLE2_DESIGN[0].tolist()
-    assert "Not included" in readme
+    assert "table2_ours.csv" in readme
     again = bundle.write_bundle(tmp_path / "records", tmp_path / "again.zip")
     assert again.read_bytes() == out.read_bytes()  # equal contents, equal bytes
 
@@ -43,3 +43,82 @@ def test_bundle_holds_the_thesis_tables_every_record_and_the_runs(tmp_path: Path
 def test_bundle_needs_records(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError, match=r"no <notebook>\.json"):
         bundle.write_bundle(tmp_path, tmp_path / "b.zip")
+
+
+def _store(folder: Path) -> Path:
+    """A small store without FE: two models, a linear and a non-linear task, keys as the code
+    makes them."""
+    from mechlib.hexflex.campaign import store as st
+    from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
+
+    fp = model_code_fingerprint()
+    specs = [
+        json.dumps({"geometry": {"thickness": t}, "mesh": "default", "mesh_size": 0.1,
+                    "element": "q2", "young": 71700.0, "poisson": 0.33})
+        for t in (0.5, 0.45)
+    ]  # fmt: skip
+    forces = np.array([[0.1, -0.2, 0.3, 0.0, 0.5, -1.0], [0.25, 0, 0, 0, 0, 0]])
+    lin = np.arange(12.0).reshape(2, 6)
+    nonlin = np.c_[np.arange(36.0).reshape(2, 18), [[3, 1, 0, 1e-12], [4, 2, 1, 2e-12]]]
+    entries = [
+        st.Entry(task_key(specs[0], "linear", forces, 1, fp), specs[0], "linear", 1, forces, lin),
+        st.Entry(
+            task_key(specs[1], "nonlinear", forces, 2, fp), specs[1], "nonlinear", 2, forces, nonlin
+        ),
+    ]
+    return st.write_store(entries, folder)
+
+
+def test_store_tables_list_every_run_and_model(tmp_path: Path) -> None:
+    from mechlib.pipeline import bundleruns
+
+    tables = bundleruns.store_tables(_store(tmp_path / "store"))
+    models = list(csv.DictReader(io.StringIO(tables["runs/models.csv"])))
+    linear = list(csv.DictReader(io.StringIO(tables["runs/linear_runs.csv"])))
+    nonlinear = list(csv.DictReader(io.StringIO(tables["runs/nonlinear_runs.csv"])))
+    assert [m["thickness [mm]"] for m in models] == ["0.45", "0.5"]  # sorted by specification
+    assert [r["model"] for r in linear] == ["M2", "M2"] and linear[1]["θz [µrad]"] == "11"
+    assert linear[0]["T3D2 [N]"] == "-1"
+    assert [r["model"] for r in nonlinear] == ["M1", "M1"] and nonlinear[0]["load steps"] == "2"
+    assert nonlinear[1]["euler_xyz θz [µrad]"] == "35" and nonlinear[1]["restarts [count]"] == "1"
+    assert float(nonlinear[0]["residual [relative]"]) == 1e-12
+
+
+def test_bundle_ships_notebook_data_and_the_evaluator(tmp_path: Path) -> None:
+    import pandas as pd
+
+    from mechlib.reporting.records import Recorder
+
+    _records(tmp_path / "records")
+    rec = Recorder("nonlinear_metamodels", paste=lambda *_: None)
+    rec.add_data("realtime_model", {"format": "x", "coef": np.eye(2)}, about="the model")
+    rec.add_data("curves", pd.DataFrame({"runs": [16, 32], "err [%]": [1.5, 0.25]}), about="c")
+    rec.save(tmp_path / "records")
+    out = bundle.write_bundle(
+        tmp_path / "records", tmp_path / "b.zip", extra={"runs/x.csv": "a\n"}, extra_readme="X\n"
+    )
+    with zipfile.ZipFile(out) as archive:
+        names = set(archive.namelist())
+        readme = archive.read("README.txt").decode()
+        model = json.loads(archive.read("data/nonlinear_metamodels/realtime_model.json"))
+        curves = archive.read("data/nonlinear_metamodels/curves.csv").decode()
+    assert {bundle.EVALUATOR, "runs/x.csv"} <= names
+    assert "records/data" not in " ".join(names)  # data are not records
+    assert model["coef"] == [[1.0, 0.0], [0.0, 1.0]] and curves == "runs,err [%]\n16,1.5\n32,0.25\n"
+    assert "realtime_model.json: the model" in readme and readme.count("X\n") == 1
+    assert "evaluator.py" in readme
+
+
+def test_add_data_refuses_bad_names_and_kinds() -> None:
+    from mechlib.reporting.records import Recorder
+
+    rec = Recorder("nb", paste=lambda *_: None)
+    with pytest.raises(ValueError, match="not \\[A-Za-z0-9_\\]"):
+        rec.add_data("a/b", {}, about="x")
+    with pytest.raises(ValueError, match="description"):
+        rec.add_data("a", {}, about=" ")
+    with pytest.raises(ValueError, match="DataFrame or a mapping"):
+        rec.add_data("a", [1, 2], about="x")
+    rec.add_data("a", {}, about="x")
+    with pytest.raises(ValueError, match="already used"):
+        rec.add_data("a", {}, about="y")

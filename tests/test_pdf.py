@@ -160,7 +160,7 @@ def test_check_names_each_problem_with_its_allowed_value(
     assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
     assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
     assert problems[4] == "text at 6.00 pt on page 2 ('tiny'), allowed ≥ 7.0 pt"
-    assert problems[5].startswith("link to /elsewhere/d.zip: not a file beside the PDF")
+    assert problems[5].startswith("link to file:///elsewhere/d.zip: absolute (allowed: a link")
     assert len(problems) == 6
 
 
@@ -185,25 +185,34 @@ def test_captions_at_the_top_of_a_page_are_parted_from_their_figure() -> None:
     assert pdfcheck.parted_captions(layout([(30.0, "Figures 2–5 draw it")])) == []
 
 
-def test_links_to_files_must_name_a_file_beside_the_pdf(tmp_path: Path) -> None:
+def test_links_to_files_must_be_relative_and_name_a_file_beside_the_pdf(tmp_path: Path) -> None:
     (tmp_path / "pdf").mkdir()
     (tmp_path / "pdf" / "d.zip").write_bytes(b"zip")
-    (tmp_path / "d.zip").write_bytes(b"zip")  # a file, but not beside the PDF
-    beside = (tmp_path / "pdf" / "d.zip").as_uri()
-    assert pdfcheck.broken_links([beside, "https://x.org/a.zip"], tmp_path / "pdf", ["d.zip"]) == []
-    problems = pdfcheck.broken_links(
-        [(tmp_path / "d.zip").as_uri()] * 2 + [(tmp_path / "pdf" / "e.zip").as_uri()],
-        tmp_path / "pdf",
-        ["d.zip"],
-    )
+    where = (tmp_path / "pdf").resolve()
+    ok = ["d.zip", "https://x.org/a.zip", "#anchor", "book.html#p5"]
+    assert pdfcheck.broken_links(ok, tmp_path / "pdf", ["d.zip"]) == []
+    absolute = (tmp_path / "pdf" / "d.zip").as_uri()
+    problems = pdfcheck.broken_links([absolute, "e.zip", "e.zip"], tmp_path / "pdf", ["d.zip"])
     assert problems == [
-        f"link to {tmp_path / 'd.zip'}: not a file beside the PDF "
-        f"(allowed: a file in {(tmp_path / 'pdf').resolve()})",
-        f"link to {tmp_path / 'pdf' / 'e.zip'}: not a file beside the PDF "
-        f"(allowed: a file in {(tmp_path / 'pdf').resolve()})",
-        f"the book links d.zip; the PDF has no link to {(tmp_path / 'pdf').resolve() / 'd.zip'} "
-        "(allowed: a link there)",
+        f"link to {absolute}: absolute (allowed: a link relative to the PDF)",
+        f"link to e.zip: no such file beside the PDF (allowed: a file in {where})",
+        "the book links d.zip; the PDF has no link to it beside the PDF (allowed: d.zip)",
     ]
+
+
+def test_file_links_are_made_relative_in_place(tmp_path: Path) -> None:
+    from mechlib.pipeline import pdf
+
+    folder = tmp_path / "out"
+    folder.mkdir()
+    uri = f"{folder.resolve().as_uri()}/data.zip".encode()
+    body = b"%PDF-1.4\n1 0 obj\n<</A <</S /URI /URI (" + uri + b")>>>>\nendobj\nxref 0 2\n"
+    (folder / "b.pdf").write_bytes(body)
+    assert pdf.relative_file_links(folder / "b.pdf") == 1
+    out = (folder / "b.pdf").read_bytes()
+    assert len(out) == len(body) and b"/URI (data.zip) " in out and b"file:" not in out
+    assert out.index(b"endobj") == body.index(b"endobj")  # offsets kept: the xref holds
+    assert pdf.relative_file_links(folder / "b.pdf") == 0
 
 
 def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Path) -> None:

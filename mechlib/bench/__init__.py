@@ -31,6 +31,9 @@
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and
   projected to the chapter's run count on two workers. The executed
   notebooks' own papermill durations are printed when a build holds them.
+- A campaign on a Dask cluster against the local worker pool (:mod:`mechlib.bench.dask`): the
+  same non-linear runs on the same number of single-threaded workers, on a cluster the
+  benchmark starts itself; the ratio of the two times and whether the poses are bit-identical.
 """
 
 from __future__ import annotations
@@ -145,6 +148,7 @@ SECTIONS: tuple[str, ...] = (
     "calibration",
     "rom",
     "lean",
+    "dask",
 )
 
 
@@ -187,6 +191,10 @@ def main(argv: list[str] | None = None) -> int:
         from mechlib.bench.lean import print_lean
 
         print_lean()
+    if "dask" in only:
+        from mechlib.bench import dask
+
+        print("\n".join(dask.report(dask.dask_vs_local())))
     return 0
 
 

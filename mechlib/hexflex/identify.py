@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mechlib import progress
 from mechlib.hexflex.geometry import DIMENSION_BOUNDS, HexFlexGeometry
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
@@ -265,6 +266,11 @@ def identify(
         r = np.log(achieved / target)
         if log_quantum is not None:
             r = np.round(r / log_quantum) * log_quantum
+        progress.note(
+            "identification",
+            f"FE model {len(history)}: largest |log(achieved / target)| {np.abs(r).max():.3g} "
+            f"(stops at {stop:.3g})",
+        )
         if np.abs(r).max() <= stop:
             converged = True
             break

@@ -29,8 +29,8 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
-from mechlib.pipeline import bundle, landing, provenance, storecmd
-from mechlib.pipeline.book import methods, reportpage, verdictrole
+from mechlib.pipeline import bundle, bundleruns, landing, provenance, storecmd
+from mechlib.pipeline.book import explorer, methods, reportpage, verdictrole
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.reporting import artefacts, claimlist, verdicts
 
@@ -204,7 +204,7 @@ def report_markdown(
 
 def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> list[str]:
     """Write every generated page of ``book`` (the landing page ``intro.md`` too, for the build
-    ``profile``); return the problems found in ``_toc.yml``."""
+    ``profile``); return the problems found: the explorer page's model, ``_toc.yml``'s entries."""
     toc = yaml.safe_load((Path(book) / "_toc.yml").read_text())
     chapters = toc_chapters(toc)
     made = provenance.text(profile=profile)  # one build, one date on every page
@@ -221,7 +221,13 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         Path(book) / verdictrole.CLAIMS_FILE,
         json.dumps(claimlist.verdict_table(judged), indent=1, ensure_ascii=False) + "\n",
     )
-    data = bundle.write_bundle(records, generated / bundle.NAME)
+    has_store = (STORE_DIR / "manifest.json").is_file()  # every FE run the book reads
+    data = bundle.write_bundle(
+        records,
+        generated / bundle.NAME,
+        extra=bundleruns.store_tables(STORE_DIR) if has_store else {},
+        extra_readme=bundleruns.README if has_store else "",
+    )
     landing.write_landing(
         records,
         Path(book) / "intro.md",
@@ -229,10 +235,12 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         link=link,
         provenance=f"{made}\n{storecmd.landing_line(STORE_DIR)}",
         bundle=f"/{data.relative_to(Path(book)).as_posix()}",
+        bundle_bytes=data.stat().st_size,
     )
     for page in methods.write_pages(generated, link):
         _write(page, page.read_text() + footer)
-    return missing_toc_pages(book)
+    problems = explorer.write_explorer(records, Path(book), footer)  # the page Try the model
+    return problems + missing_toc_pages(book)
 
 
 def main(argv: list[str] | None = None) -> int:

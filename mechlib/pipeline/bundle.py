@@ -9,7 +9,11 @@ the HTML output. Contents:
   artefact;
 * ``records/<notebook>.json``: every record of this build (key numbers, tolerances, report rows);
 * ``runs/*.csv``: the FE runs the records hold in full (our responses to the designs of Tables 2
-  and 4), with their forces;
+  and 4), with their forces, and the members the caller adds (every run of the results store:
+  :mod:`mechlib.pipeline.bundleruns`);
+* ``data/<notebook>/``: the tables and models the notebooks kept for it
+  (:meth:`~mechlib.reporting.records.Recorder.add_data`), with the plain-Python evaluator of the
+  real-time model beside it;
 * ``README.txt``: what each file is, and what is not included.
 """
 
@@ -25,6 +29,8 @@ from pathlib import Path
 import numpy as np
 
 from mechlib import published as pub
+from mechlib.metamodels import evaluator
+from mechlib.reporting.records import DATA_DIR, DATA_INDEX
 
 #: The bundle's file name (the landing page links it).
 NAME = "mechlib-data.zip"
@@ -49,10 +55,11 @@ thesis/   values transcribed from the thesis (mechlib/published.py), as printed:
           table8_printed.csv
 records/  every record of this build: key numbers with their tolerances, glued values and the
           reproduction report's rows (JSON)
-runs/     our FE model's responses to the designs of Tables 2 and 4 (um, urad), with the forces
-Not included: the 1000 random validation runs of Table 5 and the non-linear runs; the chapter
-on virtual experiments regenerates them from its seed (its parameters cell).
+runs/     table2_ours.csv, table4_ours.csv: our FE model's responses to the designs of Tables 2
+          and 4 (um, urad), with the forces
 """
+#: where the real-time model's plain-Python evaluator goes, beside the model
+EVALUATOR = "data/nonlinear_metamodels/evaluator.py"
 
 
 def _number(value: float) -> str:
@@ -120,14 +127,39 @@ def thesis_tables() -> dict[str, str]:
     }
 
 
-def link_text(bundle: str) -> str:
-    """The landing page's paragraph linking the bundle (``bundle``: its path in the book)."""
+def link_text(bundle: str, size_bytes: int) -> str:
+    """The landing page's paragraph linking the bundle (``bundle``: its path in the book;
+    ``size_bytes``: the zip's size)."""
+    size = f"{size_bytes / 1e6:.2g} MB" if size_bytes >= 1e6 else f"{size_bytes / 1e3:.3g} kB"
     return (
-        f"{{download}}`Download the data of this build <{bundle}>` (one zip): the thesis's "
-        "tables as transcribed (CSV), every record of key numbers with its tolerance and report "
-        "rows (JSON), and our FE runs of the designs of Tables 2 and 4 (CSV); its README says "
-        "what each file is."
+        f"{{download}}`Download the data of this build <{bundle}>` (one zip, {size}): the "
+        "thesis's tables as transcribed (CSV), every record of key numbers with its tolerance "
+        "and report rows (JSON), every FE run the book reads (the linear and non-linear runs with "
+        "their forces, poses and solve statistics, and the FE models with their geometry), the "
+        "learning curves of the meta-models, and the real-time model as coefficients (JSON) "
+        "with a plain-Python evaluator; its README says what each file is, with units."
     )
+
+
+def notebook_data(records: Path) -> tuple[dict[str, str], list[str]]:
+    """The files the notebooks kept for the bundle (``<records>/data/<notebook>/``) by name in
+    the bundle, and their README lines; the real-time model's evaluator beside its model."""
+    files: dict[str, str] = {}
+    lines: list[str] = []
+    for index in sorted(Path(records).glob(f"{DATA_DIR}/*/{DATA_INDEX}")):
+        folder = index.parent
+        for name, about in json.loads(index.read_text()).items():
+            member = f"{DATA_DIR}/{folder.name}/{name}"
+            files[member] = (folder / name).read_text()
+            lines.append(f"{member}: {about}")
+    if "data/nonlinear_metamodels/realtime_model.json" in files:
+        files[EVALUATOR] = Path(evaluator.__file__).read_text()
+        lines.append(
+            f"{EVALUATOR}: the real-time model's evaluator in plain Python (no NumPy); "
+            "`python evaluator.py realtime_model.json` prints its largest difference from the "
+            "model's check values"
+        )
+    return files, lines
 
 
 def run_tables(records: Mapping[str, Mapping]) -> dict[str, str]:
@@ -146,8 +178,12 @@ def run_tables(records: Mapping[str, Mapping]) -> dict[str, str]:
     return out
 
 
-def write_bundle(records: Path, out: Path) -> Path:
+def write_bundle(
+    records: Path, out: Path, extra: Mapping[str, str] | None = None, extra_readme: str = ""
+) -> Path:
     """Write the bundle ``out`` (a zip) from the record folder ``records``; return its path.
+
+    ``extra`` adds members (name → text), ``extra_readme`` their README paragraph.
 
     Raises
     ------
@@ -158,11 +194,18 @@ def write_bundle(records: Path, out: Path) -> Path:
     if not paths:
         raise FileNotFoundError(f"bundle: no <notebook>.json in {records}")
     loaded = {p.stem: json.loads(p.read_text()) for p in paths}
+    data, data_lines = notebook_data(records)
+    readme = README + extra_readme
+    if data_lines:
+        readme += "data/     what the notebooks kept for this bundle:\n"
+        readme += "".join(f"          {line}\n" for line in data_lines)
     members = {
-        "README.txt": README,
+        "README.txt": readme,
         **thesis_tables(),
         **{f"records/{p.name}": p.read_text() for p in paths},
         **run_tables(loaded),
+        **(extra or {}),
+        **data,
     }
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)

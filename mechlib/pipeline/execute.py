@@ -18,9 +18,10 @@ from pathlib import Path
 
 import yaml
 
-from mechlib.paths import DEFAULT_BUILD, RECORDS_ENV, RECORDS_STRICT_ENV
+from mechlib.paths import DEFAULT_BUILD, PROGRESS_ENV, RECORDS_ENV, RECORDS_STRICT_ENV
 from mechlib.pipeline.chapters import CHAPTER_INPUTS
 from mechlib.pipeline.parameters import given_parameters
+from mechlib.pipeline.progressview import ProgressView
 from mechlib.reporting.records import load
 
 
@@ -156,13 +157,16 @@ def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = (
     records = Path(records).resolve()  # absolute: the kernel runs in the notebooks' folder
     inputs = input_arguments(Path(notebook).stem, records, given_parameters(args), strict=True)
     cmd = papermill_command(Path(notebook), Path(output), [*inputs, *args])
-    env = dict(os.environ, **{RECORDS_ENV: str(records)})
+    progress = Path(output).with_name(f".{Path(output).name}.progress")
+    env = dict(os.environ, **{RECORDS_ENV: str(records), PROGRESS_ENV: str(progress.resolve())})
     for attempt in range(KERNEL_START_ATTEMPTS):
         proc = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
         said = []
-        for line in proc.stderr:  # passed on as it comes, and kept
-            sys.stderr.write(line)
-            said.append(line)
+        with ProgressView(progress, Path(notebook).stem):  # the FE campaigns' progress
+            for line in proc.stderr:  # passed on as it comes, and kept
+                sys.stderr.write(line)
+                said.append(line)
+        progress.unlink(missing_ok=True)
         if proc.wait() == 0 or not kernel_died_at_start("".join(said)):
             break
         name = Path(notebook).name

@@ -244,6 +244,7 @@ def landing_markdown(
     link: Link = doc_link,
     provenance: str = "",
     bundle: str = "",
+    bundle_bytes: int = 0,
 ) -> str:
     """The landing page's MyST text (see :func:`write_landing`)."""
     if not isinstance(profile, str) or not _PROFILE.match(profile):
@@ -275,7 +276,7 @@ def landing_markdown(
             profile_text(records, profile),
             "",
             *([f"Made from:\n\n{provenance}", ""] if provenance else []),
-            *(["## Data", "", bundle_mod.link_text(bundle), ""] if bundle else []),
+            *(["## Data", "", bundle_mod.link_text(bundle, bundle_bytes), ""] if bundle else []),
             RERUN_TEXT,
         ]
     )
@@ -289,6 +290,7 @@ def write_landing(
     link: Link = doc_link,
     provenance: str = "",
     bundle: str = "",
+    bundle_bytes: int = 0,
 ) -> None:
     """Write the landing page ``out`` from the records (only when its text changed).
 
@@ -307,6 +309,8 @@ def write_landing(
         Markdown lines saying what made the build (:func:`mechlib.pipeline.provenance.text`).
     bundle : str, optional
         The data bundle's path in the book (``/generated/mechlib-data.zip``), linked when given.
+    bundle_bytes : int, optional
+        Its size, stated beside the link.
 
     Raises
     ------
@@ -315,7 +319,9 @@ def write_landing(
     FileNotFoundError
         For a records folder without records.
     """
-    text = landing_markdown(verdicts.load_records(records), profile, link, provenance, bundle)
+    text = landing_markdown(
+        verdicts.load_records(records), profile, link, provenance, bundle, bundle_bytes
+    )
     out = Path(out)
     if not out.exists() or out.read_text() != text:
         out.write_text(text)

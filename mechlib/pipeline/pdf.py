@@ -118,9 +118,10 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
     Links to ``page`` itself (``intro.html#x``) become in-document anchors (``#x``), which
     Chromium prints as links inside the PDF; a link to a file of the build (the data bundle)
     points to the file's copy in ``pdf_dir`` (an absolute ``file:`` URI: Chromium writes no
-    relative link); ``<wbr>`` after each dot and underscore of inline code lets a long name
-    (``mechlib.doe.centered_l2``) break there in a narrow table column; a data frame
-    wider than a portrait page (:func:`frame_chars`) gets the class ``print-wide``.
+    relative link; :func:`relative_file_links` makes it relative in the printed PDF);
+    ``<wbr>`` after each dot and underscore of inline code lets a long name
+    (``mechlib.doe.centered_l2``) break there in a narrow table column; a data frame wider than
+    a portrait page (:func:`frame_chars`) gets the class ``print-wide``.
 
     Parameters
     ----------
@@ -200,7 +201,32 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
             shutil.copyfile(parts[0], out)
         else:
             run_tool(["pdfunite", *map(str, parts), str(out)])
+    relative_file_links(out)
     return out
+
+
+def relative_file_links(pdf: Path) -> int:
+    """Rewrite the PDF's links to files beside it (``/URI (file:///…/<dir>/name)``, all Chromium
+    writes) as links relative to the PDF (``/URI (name)``), so that they work wherever the PDF
+    and its files are moved together; return how many were rewritten.
+
+    The new link is padded with spaces (blanks between a dictionary's entries) to the old one's
+    length, so that every object keeps its byte offset and the cross-reference table stays valid.
+    """
+    pdf = Path(pdf)
+    data = pdf.read_bytes()
+    prefix = pdf.parent.resolve().as_uri().encode() + b"/"
+
+    def relative(m: re.Match[bytes]) -> bytes:
+        old = m.group(0)
+        new = b"/URI (" + m.group(1) + b")"
+        return new + b" " * (len(old) - len(new))
+
+    pattern = re.compile(rb"/URI \(" + re.escape(prefix) + rb"([^()/\\]+)\)")
+    out, count = pattern.subn(relative, data)
+    if count:
+        pdf.write_bytes(out)
+    return count
 
 
 def missing_tools() -> list[str]:

@@ -299,18 +299,25 @@ def parted_captions(layout: str) -> list[tuple[int, str]]:
 
 
 def broken_links(hrefs: list[str], pdf_dir: Path, files: list[str]) -> list[str]:
-    """One line per ``file:`` link not to a file beside the PDF, or a linked file not linked."""
+    """One line per link to a file that is not a relative link to a file beside the PDF (an
+    absolute ``file:`` link breaks when the PDF moves), or a linked file not linked."""
     where = Path(pdf_dir).resolve()
-    targets = [Path(unquote(urlsplit(h).path)) for h in hrefs if h.startswith("file:")]
-    return [
-        f"link to {t}: not a file beside the PDF (allowed: a file in {where})"
-        for t in dict.fromkeys(targets)
-        if t.parent != where or not t.is_file()
-    ] + [
-        f"the book links {name}; the PDF has no link to {where / name} (allowed: a link there)"
-        for name in files
-        if where / name not in targets
-    ]
+    absolute = [h for h in hrefs if h.startswith("file:")]
+    relative = [linked_file(h) for h in hrefs if not h.startswith("file:")]
+    targets = [n for n in relative if n]
+    return (
+        [f"link to {h}: absolute (allowed: a link relative to the PDF)" for h in absolute]
+        + [
+            f"link to {n}: no such file beside the PDF (allowed: a file in {where})"
+            for n in dict.fromkeys(targets)
+            if not (where / n).is_file()
+        ]
+        + [
+            f"the book links {name}; the PDF has no link to it beside the PDF (allowed: {name})"
+            for name in files
+            if name not in targets
+        ]
+    )
 
 
 def run_tool(cmd: list[str], timeout: float = 120) -> str:

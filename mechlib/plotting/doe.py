@@ -78,12 +78,12 @@ def half_normal_panels(
             ax.annotate(
                 factor_names[i], (m, qq), textcoords="offset points", xytext=(4, -3), fontsize=7
             )
-        margin_line(ax, None if margins is None else margins[j])
         ax.set_title(f"{panel_label(j)} {response_labels[j]}")
         ax.set_xlabel("|effect|")
         ax.set_ylabel("half-normal quantile")
         top = max(mag.max(), 1e-12)
         ax.set_xlim(left=-0.05 * top, right=1.25 * top)
+        margin_line(ax, None if margins is None else margins[j])  # widens the axis to show it
         readable_value_axis(ax.xaxis)
     fig.suptitle(title)
     return fig

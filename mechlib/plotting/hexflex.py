@@ -162,6 +162,7 @@ def hexflex_deformed(
     title: str,
     ax: Axes | None = None,
     scale: float | None = None,
+    colorbar: bool | None = None,
 ) -> Figure:
     """Deformed planform (in-plane displacements magnified) coloured by u_z [µm].
 
@@ -173,7 +174,10 @@ def hexflex_deformed(
     title : str
         The panel's title.
     ax : Axes, optional
-        Draw into this panel (then without a colour bar); default: a new figure with one.
+        Draw into this panel; default: a new figure.
+    colorbar : bool, optional
+        Add a u_z colour bar [µm] beside the panel (when u_z is not zero); default: only on a
+        new figure.
     scale : float, optional
         In-plane magnification; default: the largest in-plane displacement becomes
         ``DEFORMED_SHARE`` of the planform's span (0 if the in-plane part is round-off).
@@ -202,10 +206,12 @@ def hexflex_deformed(
     lim = max(np.abs(uz).max(), 1e-12)
     pc = draw_quads(ax, nodes, planar.quads, values=uz, cmap="coolwarm", edgecolors="none")
     pc.set_clim(-lim, lim)
-    ax.set_title(f"{title}\n(in-plane ×{scale:.3g}; colour u_z)", fontsize=8)
+    flat = not np.any(uz)
+    colour = "u_z zero to round-off" if flat else "colour u_z"
+    ax.set_title(f"{title}\n(in-plane ×{scale:.3g}; {colour})", fontsize=8)
     ax.set_xticks([])
     ax.set_yticks([])
-    if own:
+    if (own if colorbar is None else colorbar) and not flat:
         fig.colorbar(pc, ax=ax, label="u_z [µm]", shrink=0.8)
     return fig
 
@@ -245,6 +251,6 @@ def hexflex_stage_motions(
     rows, cols = panel_grid(len(labels))
     fig, panels = figure_and_panels(axes, (rows, cols), (11.0 * cols / 3, 3.5 * rows))
     for ax, d, label in zip(panels, shapes, labels, strict=True):
-        hexflex_deformed(planar, d, label, ax=ax)
+        hexflex_deformed(planar, d, label, ax=ax, colorbar=True)
     fig.suptitle(title)
     return fig

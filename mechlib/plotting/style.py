@@ -135,8 +135,12 @@ def panel_label(j: int) -> str:
 
 
 def margin_line(ax: Axes, margin: float | None, label: str = "Lenth ME") -> None:
-    """A dashed vertical line at ``margin`` with a legend entry, when it is positive."""
+    """A dashed vertical line at ``margin`` with a legend entry, when it is positive; the
+    x-axis is widened to show it when it lies beyond the drawn values."""
     if margin is not None and margin > 0:
+        left, right = ax.get_xlim()
+        if margin >= right:
+            ax.set_xlim(left, margin * 1.08)
         ax.axvline(margin, color=ACTIVE_COLOR, ls="--", lw=1, label=label)
         ax.legend(loc="lower right", fontsize=7)
 

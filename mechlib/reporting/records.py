@@ -43,6 +43,23 @@ CLAIM_PREFIX = "claims."
 Glue = str | Mapping[str, int | tuple[int, ...]]
 
 
+def _plain_tree(value: Any) -> Any:
+    """:func:`_plain` through mappings too (keys as strings)."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain_tree(v) for k, v in value.items()}
+    if isinstance(value, np.ndarray):
+        return [_plain_tree(v) for v in value.tolist()]
+    if isinstance(value, (list, tuple)):
+        return [_plain_tree(v) for v in value]
+    return _plain(value)
+
+
+#: the folder, under the records folder, of the data a notebook keeps for the bundle
+DATA_DIR = "data"
+#: each notebook's data folder's list of files and their descriptions
+DATA_INDEX = "index.json"
+
+
 def _is_number(value: Any) -> bool:
     return np.asarray(value).dtype.kind in "iuf"
 
@@ -79,6 +96,7 @@ class Recorder:
     glued: dict[str, dict[str, Any]] = field(default_factory=dict)
     paste: Callable[[str, Any], None] = field(default=paste, repr=False)
     timings: dict[str, float] = field(default_factory=dict)
+    data: dict[str, tuple[str, str]] = field(default_factory=dict)
 
     def value(
         self,
@@ -247,8 +265,39 @@ class Recorder:
         self.report.append({k: _plain(v) for k, v in verdict.row().items()})
         return verdict.word
 
+    def add_data(self, name: str, content: Any, *, about: str) -> None:
+        """Keep a table or a model for the book's data bundle (not a record: nothing compares it).
+
+        Parameters
+        ----------
+        name : str
+            File stem, letters, digits and ``_``; unique in this notebook.
+        content : pandas.DataFrame or mapping
+            A table (written as CSV, full precision, headers with their units) or a JSON-ready
+            mapping (written as JSON).
+        about : str
+            One line for the bundle's README: what the file holds, with units.
+
+        Raises
+        ------
+        ValueError
+            A name used twice or not of that form, an empty ``about``, or content of another kind.
+        """
+        if not name.replace("_", "").isalnum() or name in {f.rsplit(".", 1)[0] for f in self.data}:
+            raise ValueError(f"data name {name!r} is not [A-Za-z0-9_]+ or was already used")
+        if not about.strip():
+            raise ValueError(f"data {name!r} needs a one-line description (about), got none")
+        if hasattr(content, "to_csv"):
+            self.data[f"{name}.csv"] = (content.to_csv(index=False, lineterminator="\n"), about)
+        elif isinstance(content, Mapping):
+            text = json.dumps(_plain_tree(content), indent=1, ensure_ascii=False) + "\n"
+            self.data[f"{name}.json"] = (text, about)
+        else:
+            raise ValueError(f"data {name!r} must be a DataFrame or a mapping, got {type(content)}")
+
     def save(self, folder: Path | None = None) -> Path:
-        """Write ``<folder>/<notebook>.json`` deterministically and return its path."""
+        """Write ``<folder>/<notebook>.json`` deterministically and return its path; the data
+        kept by :meth:`add_data` go to ``<folder>/data/<notebook>/`` with an ``index.json``."""
         folder = Path(folder) if folder is not None else records_dir()
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{self.notebook}.json"
@@ -261,6 +310,13 @@ class Recorder:
         if self.timings:  # machine-dependent: not compared (see :meth:`timing`)
             payload["timings"] = self.timings
         path.write_text(json.dumps(payload, indent=1, sort_keys=True) + "\n")
+        if self.data:
+            data_dir = folder / DATA_DIR / self.notebook
+            data_dir.mkdir(parents=True, exist_ok=True)
+            for file, (text, _) in self.data.items():
+                (data_dir / file).write_text(text)
+            index = {file: about for file, (_, about) in self.data.items()}
+            (data_dir / DATA_INDEX).write_text(json.dumps(index, indent=1, ensure_ascii=False))
         return path
 
 

@@ -6,24 +6,25 @@ default runs them in-process; a dask cluster's ``client.get_executor()`` or a
 ``ProcessPoolExecutor`` work the same way — and caches each finished task on disk under a key
 made of the model specification, the kind of analysis and the task's forces. A task that fails
 is reported by experiment index, and every completed result is kept (in the cache and on the
-exception).
-
-Workers build the FE model from a picklable :class:`ModelSpec` and keep it for the life of the
-process, so each worker pays the assembly and factorisation once.
+exception). Workers build the FE model from a picklable :class:`ModelSpec`
+(:mod:`~mechlib.hexflex.campaign.spec`) and keep it for the life of the process, so each worker
+pays the assembly and factorisation once; a task runs its BLAS on one thread wherever it runs.
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
 import functools
-import json
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex.campaign.executors import InProcessExecutor
+from mechlib.hexflex.campaign.executors import InProcessExecutor, worker_count
+from mechlib.hexflex.campaign.spec import MESHES as MESHES  # re-exported: notebooks check it
+from mechlib.hexflex.campaign.spec import ModelSpec
 from mechlib.hexflex.campaign.taskcache import (
     cache_result,
     cached_result,
@@ -32,15 +33,11 @@ from mechlib.hexflex.campaign.taskcache import (
     task_key,
 )
 from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
-from mechlib.hexflex.fe.lean import lean_model
-from mechlib.hexflex.fe.model import (
-    HexFlexModel,
-    check_forces,
-)
+from mechlib.hexflex.fe.model import HexFlexModel, check_forces
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.problem import QUAD_ORDER
-from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
-from mechlib.params import check_choice, check_float, check_int
+from mechlib.params import check_choice, check_int
+from mechlib.progress import Progress
 
 #: task kinds: linear runs, non-linear runs, and the model's size (its free DOFs, one row of
 #: zero forces), cached like the runs so that a build reading the cache builds no model for it
@@ -62,66 +59,8 @@ POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 RESULT_COLUMNS = {**POSE_COLUMNS, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
-#: FE mesh recipes a :class:`ModelSpec` names
-MESHES: tuple[str, ...] = ("default", "lean")
-
-
-@dataclass(frozen=True)
-class ModelSpec:
-    """Everything that defines an FE model (picklable, hashable, JSON-serialisable)."""
-
-    geometry: HexFlexGeometry
-    young: float = AL7075_YOUNG_MPA
-    poisson: float = AL7075_POISSON
-    mesh_size: float | None = None
-    element: str = "q2"
-    #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
-    #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
-    quad_order: int = QUAD_ORDER
-    #: the mesh recipe: ``"default"`` (:class:`HexFlexModel`, flexure elements ``mesh_size``) or
-    #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`, Q2 only: its own element sizes, its
-    #: pose fitted at the stage vertices of the default mesh of size ``mesh_size``, the default
-    #: model it stands for; its geometry should be fitted to that model's magnitudes by
-    #: :func:`mechlib.hexflex.studies.leanmesh.fit_lean`, or it is a few % off them)
-    mesh: str = "default"
-    #: the default mesh's growth away from the flexures (:class:`HexFlexModel`'s ``coarsening``;
-    #: None: its default)
-    coarsening: float | None = None
-
-    def __post_init__(self) -> None:
-        check_int("quad_order", self.quad_order, low=2, high=10)
-        check_choice("mesh", self.mesh, MESHES)
-        if self.mesh == "lean" and self.element != "q2":
-            raise ValueError(f"mesh 'lean' is Q2: element must be 'q2', got {self.element!r}")
-        if self.coarsening is not None:  # a float (2 and 2.0: one key), in its range
-            c = check_float("coarsening", self.coarsening, low=1.0, high=64.0)
-            object.__setattr__(self, "coarsening", c)
-            if self.mesh == "lean":
-                raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, "
-                                 f"got {self.coarsening!r}")  # fmt: skip
-
-    def key(self) -> str:
-        """Stable text of the specification (cache key ingredient; a ``coarsening`` of None is
-        left out, so the keys of specifications without it are those they had before it)."""
-        d = asdict(self)
-        if d["coarsening"] is None:
-            del d["coarsening"]
-        return json.dumps(d, sort_keys=True)
-
-    def build(self) -> HexFlexModel:
-        """A fresh model (assembly and factorisation)."""
-        if self.mesh == "lean":
-            return lean_model(
-                self.geometry, young=self.young, poisson=self.poisson, pose_mesh_size=self.mesh_size
-            )
-        return HexFlexModel(
-            self.geometry,
-            young=self.young,
-            poisson=self.poisson,
-            mesh_size=self.mesh_size,
-            element=self.element,
-            coarsening=self.coarsening,
-        )
+KIND_NAMES = {"linear": "linear FE runs", "nonlinear": "non-linear FE runs", "size": "model sizes"}
+"""What a campaign of each kind is called in its progress reports."""
 
 
 def model_for(spec: ModelSpec) -> HexFlexModel:
@@ -132,7 +71,8 @@ def model_for(spec: ModelSpec) -> HexFlexModel:
 
 @lru_cache(maxsize=4)
 def _model(spec: ModelSpec) -> HexFlexModel:
-    return spec.build()
+    with threadpool_limits(limits=1, user_api="blas"):  # the same bits wherever it is built
+        return spec.build()
 
 
 def release_models() -> None:
@@ -190,6 +130,11 @@ def solver_for(spec: ModelSpec) -> NonlinearSolver:
 
 
 def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+    with threadpool_limits(limits=1, user_api="blas"):  # in a pool, in-process or on Dask alike
+        return _solve(spec, kind, forces, steps)
+
+
+def _solve(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     if kind == "linear":
         return model_for(spec).poses(forces)
     if kind == "size":
@@ -261,7 +206,9 @@ def run_experiments(
     cache_dir : Path, optional
         Folder of cached task results; ``None`` disables caching.
     progress : bool
-        Show a tqdm progress bar over tasks.
+        Show a tqdm progress bar over the tasks to compute on standard error. Whatever it
+        says, the campaign reports its progress and time estimate to ``$MECHLIB_PROGRESS``
+        when that is set (:mod:`~mechlib.progress`: the build's terminal).
     pose : {"small", "rotvec", "euler_xyz", "all", "stats"}
         The pose convention (``POSE_CONVENTIONS``): the small-rotation fit (default; the only
         one of a linear run) or, for a non-linear run, the exact rigid registration of the stage
@@ -291,26 +238,28 @@ def run_experiments(
     if cache_dir is not None:
         cache_dir = Path(cache_dir)
         cache_dir.mkdir(parents=True, exist_ok=True)
-    pending: dict[cf.Future, np.ndarray] = {}
     pool = executor if executor is not None else InProcessExecutor()
+    todo = []  # the chunks to compute (the cached ones are read first: the meter counts them)
     for rows in chunks:
         path = cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy" if cache_dir else None
         cached = cached_result(path, len(rows), width) if path is not None else None
         if cached is not None:
             out[rows], done[rows] = cached, True
             log_task(path, spec.key(), kind, d[rows], steps, hit=True)
-            continue
+        else:
+            todo.append((rows, path))
+    desc, n_cached = f"{KIND_NAMES[kind]} ({spec.mesh} mesh)", len(chunks) - len(todo)
+    meter = Progress(desc, kind, spec.digest(), len(chunks), n_cached, worker_count(pool),
+                     cache_dir, bar=progress)  # fmt: skip
+    pending: dict[cf.Future, np.ndarray] = {}
+    for rows, path in todo:
         fut = pool.submit(_task, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(cache_result, path, len(rows)))
             log_task(path, spec.key(), kind, d[rows], steps, hit=False)
+        fut.add_done_callback(lambda _: meter.update())
         pending[fut] = rows
     failed: list[tuple[int, Exception]] = []
-    bar = None
-    if progress and pending:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=len(pending), desc=f"{kind} FE experiments", unit="task")
     pending_rows = {int(rows[0]): rows for rows in pending.values()}
     for fut in cf.as_completed(pending):
         rows = pending[fut]
@@ -324,10 +273,7 @@ def run_experiments(
                 cache_result(
                     cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", len(rows), fut
                 )
-        if bar is not None:
-            bar.update()
-    if bar is not None:
-        bar.close()
+    meter.close(failed=len(failed))
     if failed:
         failed.sort(key=lambda p: p[0])
         first, err = failed[0]

@@ -13,4 +13,8 @@ diagrams    flow diagrams drawn with matplotlib (the thesis's Figs 1 and 9)
 methods     the generated pages that show Figs 1 and 9
 htmlcheck   static checks of the built HTML (no network requests, no machine paths, links resolve)
 browser     the built book opened in headless Chromium from ``file://`` with the network off
+explorer    the page "Try the model": the recorded real-time model as a JS literal, page, figure
+explorerdraw  its drawing: the stage moved by a pose, as SVG views
+explorerpage  its Markdown and interactive HTML
+explorercheck the page's JavaScript in headless Chromium against Python's evaluation
 """

@@ -1,0 +1,79 @@
+"""The specification of an FE model of a campaign: everything that defines it, picklable and
+hashable, with a stable text for cache keys (:meth:`ModelSpec.key`)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from dataclasses import asdict, dataclass
+
+from mechlib.hexflex.fe.lean import lean_model
+from mechlib.hexflex.fe.model import HexFlexModel
+from mechlib.hexflex.fe.problem import QUAD_ORDER
+from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
+from mechlib.params import check_choice, check_float, check_int
+
+#: FE mesh recipes a :class:`ModelSpec` names
+MESHES: tuple[str, ...] = ("default", "lean")
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """Everything that defines an FE model (picklable, hashable, JSON-serialisable)."""
+
+    geometry: HexFlexGeometry
+    young: float = AL7075_YOUNG_MPA
+    poisson: float = AL7075_POISSON
+    mesh_size: float | None = None
+    element: str = "q2"
+    #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
+    #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
+    quad_order: int = QUAD_ORDER
+    #: the mesh recipe: ``"default"`` (:class:`HexFlexModel`, flexure elements ``mesh_size``) or
+    #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`, Q2 only: its own element sizes, its
+    #: pose fitted at the stage vertices of the default mesh of size ``mesh_size``, the default
+    #: model it stands for; its geometry should be fitted to that model's magnitudes by
+    #: :func:`mechlib.hexflex.studies.leanmesh.fit_lean`, or it is a few % off them)
+    mesh: str = "default"
+    #: the default mesh's growth away from the flexures (:class:`HexFlexModel`'s ``coarsening``;
+    #: None: its default)
+    coarsening: float | None = None
+
+    def __post_init__(self) -> None:
+        check_int("quad_order", self.quad_order, low=2, high=10)
+        check_choice("mesh", self.mesh, MESHES)
+        if self.mesh == "lean" and self.element != "q2":
+            raise ValueError(f"mesh 'lean' is Q2: element must be 'q2', got {self.element!r}")
+        if self.coarsening is not None:  # a float (2 and 2.0: one key), in its range
+            c = check_float("coarsening", self.coarsening, low=1.0, high=64.0)
+            object.__setattr__(self, "coarsening", c)
+            if self.mesh == "lean":
+                raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, "
+                                 f"got {self.coarsening!r}")  # fmt: skip
+
+    def key(self) -> str:
+        """Stable text of the specification (cache key ingredient; a ``coarsening`` of None is
+        left out, so the keys of specifications without it are those they had before it)."""
+        d = asdict(self)
+        if d["coarsening"] is None:
+            del d["coarsening"]
+        return json.dumps(d, sort_keys=True)
+
+    def digest(self) -> str:
+        """A short name of the specification (8 hex digits of :meth:`key`'s SHA-256)."""
+        return hashlib.sha256(self.key().encode()).hexdigest()[:8]
+
+    def build(self) -> HexFlexModel:
+        """A fresh model (assembly and factorisation)."""
+        if self.mesh == "lean":
+            return lean_model(
+                self.geometry, young=self.young, poisson=self.poisson, pose_mesh_size=self.mesh_size
+            )
+        return HexFlexModel(
+            self.geometry,
+            young=self.young,
+            poisson=self.poisson,
+            mesh_size=self.mesh_size,
+            element=self.element,
+            coarsening=self.coarsening,
+        )

@@ -1,0 +1,38 @@
+"""Reference evaluator of an exported real-time model, in plain Python (no NumPy).
+
+Shipped as it is in the book's data bundle beside ``realtime_model.json``: ``pose(model, forces)``
+evaluates the Legendre polynomial that :mod:`mechlib.metamodels.export` writes, so that anyone can
+use the model, or port it, without this library. ``python evaluator.py realtime_model.json``
+checks it on the model's own check values.
+"""
+
+import json
+import math
+import sys
+
+
+def pose(model, forces):
+    """Pose [µm, µrad] (x, y, z, θx, θy, θz) of a model dict for six forces [N] in ±amplitude."""
+    amp, exps = model["amplitude_n"], model["exponents"]
+    deg = max(max(e) for e in exps)
+    basis = []  # per force: √(2k+1) P_k(u), k = 0 .. deg, u = force / amplitude
+    for f in forces:
+        u, p = f / amp, [1.0, f / amp]
+        for k in range(1, deg):
+            p.append(((2 * k + 1) * u * p[k] - k * p[k - 1]) / (k + 1))
+        basis.append([math.sqrt(2 * k + 1) * p[k] for k in range(deg + 1)])
+    out = [0.0] * len(model["outputs"])
+    for e, row in zip(exps, model["coef"], strict=True):
+        term = 1.0
+        for b, k in zip(basis, e, strict=True):
+            term *= b[k]
+        out = [o + term * c for o, c in zip(out, row, strict=True)]
+    return out
+
+
+if __name__ == "__main__":
+    model = json.load(open(sys.argv[1]))
+    check = model["check"]
+    for forces, expected in zip(check["forces_n"], check["poses"], strict=True):
+        got = pose(model, forces)
+        print(max(abs(g - e) for g, e in zip(got, expected, strict=True)))

@@ -1,0 +1,30 @@
+"""Dask workers of an FE campaign get glibc's memory reuse back and one BLAS thread."""
+
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from mechlib.hexflex.campaign import daskworker
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc's mallopt")
+def test_restore_malloc_sets_glibc_thresholds_and_one_blas_thread() -> None:
+    import subprocess
+
+    code = (  # in a process of its own: the BLAS limit lasts for the life of the process
+        "import numpy; from threadpoolctl import threadpool_info; "
+        "from mechlib.hexflex.campaign import daskworker as d; ok = d.restore_malloc(); "
+        "print(ok, sorted({i['num_threads'] for i in threadpool_info() "
+        "if i['user_api'] == 'blas'}))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["True", "[1]"]
+
+
+def test_the_plugin_is_a_named_worker_plugin() -> None:
+    from distributed.diagnostics.plugin import WorkerPlugin
+
+    plugin = daskworker.CampaignWorker()
+    assert isinstance(plugin, WorkerPlugin) and plugin.name == "mechlib-campaign-worker"
