@@ -302,16 +302,13 @@ def broken_links(hrefs: list[str], pdf_dir: Path, files: list[str]) -> list[str]
     """One line per link to a file that is not a relative link to a file beside the PDF (an
     absolute ``file:`` link breaks when the PDF moves), or a linked file not linked."""
     where = Path(pdf_dir).resolve()
-    absolute = [h for h in hrefs if h.startswith("file:")]
-    relative = [linked_file(h) for h in hrefs if not h.startswith("file:")]
-    targets = [n for n in relative if n]
+    targets = [n for h in hrefs if not h.startswith("file:") and (n := linked_file(h))]
+    absolute = [f"link to {h}: absolute (allowed: a link relative to the PDF)" for h in hrefs]
+    missing = [f"link to {n}: no such file beside the PDF (allowed: a file in {where})" for n in
+               dict.fromkeys(targets) if not (where / n).is_file()]  # fmt: skip
     return (
-        [f"link to {h}: absolute (allowed: a link relative to the PDF)" for h in absolute]
-        + [
-            f"link to {n}: no such file beside the PDF (allowed: a file in {where})"
-            for n in dict.fromkeys(targets)
-            if not (where / n).is_file()
-        ]
+        [a for a, h in zip(absolute, hrefs, strict=True) if h.startswith("file:")]
+        + missing
         + [
             f"the book links {name}; the PDF has no link to it beside the PDF (allowed: {name})"
             for name in files

@@ -61,6 +61,8 @@ class CampaignWorker(_plugin_base()):
 def dask_setup(worker: object = None) -> None:
     """Preload hook (``--preload mechlib.hexflex.campaign.daskworker``): the FE stack imported
     before the first task, and :func:`restore_malloc`."""
-    import mechlib.hexflex.campaign.experiments  # noqa: F401  (SfePy and the FE models)
+    # SfePy and the FE models, imported before the first task
+    import mechlib.hexflex.fe.lean
+    import mechlib.hexflex.fe.nonlinear  # noqa: F401
 
     restore_malloc()
