@@ -303,18 +303,12 @@ def broken_links(hrefs: list[str], pdf_dir: Path, files: list[str]) -> list[str]
     absolute ``file:`` link breaks when the PDF moves), or a linked file not linked."""
     where = Path(pdf_dir).resolve()
     targets = [n for h in hrefs if not h.startswith("file:") and (n := linked_file(h))]
-    absolute = [f"link to {h}: absolute (allowed: a link relative to the PDF)" for h in hrefs]
-    missing = [f"link to {n}: no such file beside the PDF (allowed: a file in {where})" for n in
-               dict.fromkeys(targets) if not (where / n).is_file()]  # fmt: skip
-    return (
-        [a for a, h in zip(absolute, hrefs, strict=True) if h.startswith("file:")]
-        + missing
-        + [
-            f"the book links {name}; the PDF has no link to it beside the PDF (allowed: {name})"
-            for name in files
-            if name not in targets
-        ]
-    )
+    bad = [f"link to {h}: absolute (allowed: a link relative to the PDF)" for h in hrefs
+           if h.startswith("file:")]  # fmt: skip
+    bad += [f"link to {n}: no such file beside the PDF (allowed: a file in {where})" for n in
+            dict.fromkeys(targets) if not (where / n).is_file()]  # fmt: skip
+    return bad + [f"the book links {n}; the PDF has no link to it beside the PDF (allowed: {n})"
+                  for n in files if n not in targets]  # fmt: skip
 
 
 def run_tool(cmd: list[str], timeout: float = 120) -> str:
