@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import threading
 import time
 from datetime import UTC, datetime
@@ -36,18 +37,20 @@ TICK_S = 0.5
 
 def measured_seconds(cache_dir: Path | None, kind: str, model: str = "") -> dict[str, Any] | None:
     """The last measurement of a task's seconds on this machine (``per_task_s``, ``workers``,
-    ``tasks``, ``when``): of this ``model`` (a short name of its specification) if there is one,
-    else of any model of this ``kind``; ``None`` when there is none (or it is unreadable)."""
+    ``tasks``, ``when``, and ``same_model``: whether it is this model's): of this ``model`` (a
+    short name of its specification) if there is one, else of the last model of this ``kind``;
+    ``None`` when there is none (or it is unreadable)."""
     if cache_dir is None:
         return None
     try:
         times = json.loads((Path(cache_dir) / TIMES_FILE).read_text())
-        entry = times.get(f"{kind}:{model}") or times.get(kind)
+        own = times.get(f"{kind}:{model}")
+        entry = own or times.get(kind)
     except (OSError, ValueError, AttributeError):
         return None
     if not isinstance(entry, dict) or not isinstance(entry.get("per_task_s"), int | float):
         return None
-    return entry
+    return {**entry, "same_model": bool(own)}
 
 
 def estimate_s(
@@ -109,6 +112,7 @@ class Progress:
         self.workers, self.cache_dir = max(1, workers), cache_dir
         self.to_compute = total - cached
         self.done = 0
+        self._closed = False
         self._lock = threading.Lock()
         self._start = time.perf_counter()
         self._last_tick = 0.0
@@ -125,6 +129,7 @@ class Progress:
                 "estimate_s": estimate_s(cache_dir, kind, self.to_compute, self.workers, model),
                 "per_task_s": measured["per_task_s"] if measured else None,
                 "measured_when": measured["when"] if measured else None,
+                "same_model": measured["same_model"] if measured else None,
             }
         )
 
@@ -146,8 +151,10 @@ class Progress:
             fh.write(json.dumps(line) + "\n")
 
     def update(self, n: int = 1) -> None:
-        """Count ``n`` more tasks done (computed or failed)."""
+        """Count ``n`` more tasks done (computed or failed); nothing once closed."""
         with self._lock:
+            if self._closed:
+                return
             self.done += n
             if self._bar is not None:
                 self._bar.update(n)
@@ -156,10 +163,14 @@ class Progress:
                 self._last_tick = now
                 self._emit({"event": "tick"})
 
-    def close(self, failed: int = 0) -> None:
-        """End the campaign: report it, and keep the seconds a task took (when any was
-        computed) for the next estimate."""
+    def close(self, done: int | None = None, failed: int = 0) -> None:
+        """End the campaign (``done`` tasks finished, as the caller counted them: a future's
+        callback may still be on its way): report it, and keep the seconds a task took (when
+        any was computed) for the next estimate."""
         with self._lock:
+            self._closed = True
+            if done is not None:
+                self.done = done
             elapsed = time.perf_counter() - self._start
             if self._bar is not None:
                 self._bar.close()
@@ -178,9 +189,14 @@ class Progress:
             times = json.loads(path.read_text())
         except (OSError, ValueError):
             times = {}
+        if not isinstance(times, dict):
+            times = {}
         when = datetime.now(UTC).isoformat(timespec="seconds")
         entry = {"per_task_s": per_task, "workers": self.workers, "tasks": self.done, "when": when}
         times[self.kind] = times[f"{self.kind}:{self.model}"] = entry
-        tmp = path.with_suffix(f".{threading.get_ident()}.tmp")
-        tmp.write_text(json.dumps(times, indent=1, sort_keys=True))
-        tmp.replace(path)
+        tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+        try:  # a measurement that cannot be kept costs the next estimate, never the campaign
+            tmp.write_text(json.dumps(times, indent=1, sort_keys=True))
+            tmp.replace(path)
+        except OSError:
+            tmp.unlink(missing_ok=True)

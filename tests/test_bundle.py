@@ -122,3 +122,12 @@ def test_add_data_refuses_bad_names_and_kinds() -> None:
     rec.add_data("a", {}, about="x")
     with pytest.raises(ValueError, match="already used"):
         rec.add_data("a", {}, about="y")
+
+
+def test_the_link_says_what_the_zip_holds() -> None:
+    small = bundle.link_text("/d.zip", 167_000, ["records/a.json"])
+    assert "(one zip, 167 kB)" in small and "designs of Tables 2 and 4" in small
+    assert "every FE run" not in small and "evaluator" not in small
+    full = bundle.link_text("/d.zip", 2_100_000, ["runs/nonlinear_runs.csv", bundle.EVALUATOR])
+    assert "(one zip, 2.1 MB)" in full and "every FE run the book reads" in full
+    assert "plain-Python evaluator" in full and "learning curves" not in full

@@ -68,3 +68,10 @@ def test_the_family_page_solves_no_more_runs_than_the_doe_chapters_draw(tmp_path
     assert code != 0
     assert "family_runs must be in [1, 10], got 20" in output
     assert not (tmp_path / "nonlinear_family.json").exists()
+
+
+def test_a_drawn_load_out_of_the_elastica_range_is_refused_by_name(tmp_path: Path) -> None:
+    code, output = _run_with("beyond_hexflex", ["-y", "drawn_loads: [[0, 50, 0]]"], tmp_path)
+    assert code != 0
+    assert "a_y (F_y L^2/EI) must be in [-40.0, 40.0], got 50.0" in output
+    assert not (tmp_path / "beyond_hexflex.json").exists()

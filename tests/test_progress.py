@@ -87,3 +87,11 @@ def test_the_view_follows_the_file_a_kernel_writes(tmp_path, monkeypatch) -> Non
     text = out.getvalue()
     assert "2 to compute on 1 worker; no time measured on this machine yet" in text
     assert "2 computed in" in text and "1 read from the cache" in text
+
+
+def test_a_log_line_says_the_pace_of_all_workers_and_the_eta() -> None:
+    e = {"desc": "runs", "done": 4, "to_compute": 10, "cached": 2, "workers": 2, "elapsed_s": 20.0}
+    assert pv.tick_line("nb", e) == (
+        "[nb] runs: 4/10 computed (2 cached) on 2 workers, one every 5 s, ETA 30 s"
+    )
+    assert pv.duration(4000) == "66.7 min" and pv.duration(7200) == "2.0 h"

@@ -14,6 +14,9 @@ import sys
 def pose(model, forces):
     """Pose [µm, µrad] (x, y, z, θx, θy, θz) of a model dict for six forces [N] in ±amplitude."""
     amp, exps = model["amplitude_n"], model["exponents"]
+    for name, f in zip(model["inputs"], forces, strict=True):
+        if not -amp <= f <= amp:  # the model was validated there only
+            raise ValueError(f"force {name} must be within ±{amp} N, got {f}")
     deg = max(max(e) for e in exps)
     basis = []  # per force: √(2k+1) P_k(u), k = 0 .. deg, u = force / amplitude
     for f in forces:
@@ -33,6 +36,10 @@ def pose(model, forces):
 if __name__ == "__main__":
     model = json.load(open(sys.argv[1]))
     check = model["check"]
-    for forces, expected in zip(check["forces_n"], check["poses"], strict=True):
-        got = pose(model, forces)
-        print(max(abs(g - e) for g, e in zip(got, expected, strict=True)))
+    print(
+        max(
+            abs(g - e)
+            for forces, expected in zip(check["forces_n"], check["poses"], strict=True)
+            for g, e in zip(pose(model, forces), expected, strict=True)
+        )
+    )

@@ -1,9 +1,10 @@
 """Values of the parallelogram-flexure benchmark, transcribed from its authors' files.
 
-Source: H.-J. Su and B. Survey, "Hierarchical Multi-fidelity Modeling Stack for Design and
-Analysis of Compliant Mechanisms", Proc. ASME IDETC/CIE 2026 (paper number printed as
-"DETC2026-XXXXX" in the repository's LaTeX source; its README, from commit b8d8cb6, cites it as
-submitted to the ASME J. Mechanisms and Robotics). Data and scripts: the public repository
+Source: H.-J. Su and B. Survey, "An Open Source Hierarchical Multi-fidelity Modeling Stack for
+Design and Analysis of Compliant Mechanisms", Proc. ASME IDETC/CIE 2026, paper DETC2026-19401
+(title and number as the repository's README gives them; its LaTeX source prints the title
+without "An Open Source" and the number as "DETC2026-XXXXX"; the bibliography's ``su2026stack``).
+Data and scripts: the public repository
 github.com/haijunsu-osu/parallelogram_model_comparison, commit 20457f6 (the files used here are
 unchanged up to ca92a0e). Files:
 
@@ -53,9 +54,9 @@ What the sweep's columns are (read from ``parallelogram_3d.py``):
   (u_x, u_y, φ) → (u_x, -u_y, -φ); 3003 rows (the paper says 1,517 cases and 3,094 points). The
   mirrored rows print their loads as floats ("-5.0", and "-0.0" for B).
 
-Checked against the issue: geometry, material, the three grids and the mesh-study numbers agree
-with the files (the 10 mm mesh is within 1.05 %, 0.60 %, 1.72 % of the 3 mm one); the load point
-is not the stage centre (see above) and the sign of B is lost.
+Checked against the benchmark as described to us: geometry, material, the three grids and the
+mesh-study numbers agree with the files (the 10 mm mesh is within 1.05 %, 0.60 %, 1.72 % of the
+3 mm one); the load point is not the stage centre (see above) and the sign of B is lost.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """The printed rows of the benchmark's 3-D FE sweep that this project keeps (a subset).
 
-Source: H.-J. Su and Survey, "An Open Source Hierarchical Multi-fidelity Modeling Stack for Design
-and Analysis of Compliant Mechanisms", ASME IDETC/CIE 2026, paper DETC2026-19401; data in
+Source: H.-J. Su and B. Survey, "An Open Source Hierarchical Multi-fidelity Modeling Stack for
+Design and Analysis of Compliant Mechanisms", ASME IDETC/CIE 2026, paper DETC2026-19401; data in
 github.com/haijunsu-osu/parallelogram_model_comparison, commit 20457f6 (unchanged up to ca92a0e),
 file ``comparison/preset_data/PARALLOGRAM_FEA_3D_sweep_normalized_with_neg_Ay.csv``.
 

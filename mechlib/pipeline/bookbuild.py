@@ -236,6 +236,7 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         provenance=f"{made}\n{storecmd.landing_line(STORE_DIR)}",
         bundle=f"/{data.relative_to(Path(book)).as_posix()}",
         bundle_bytes=data.stat().st_size,
+        bundle_members=bundle.members(data),
     )
     for page in methods.write_pages(generated, link):
         _write(page, page.read_text() + footer)

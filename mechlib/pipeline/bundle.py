@@ -127,18 +127,33 @@ def thesis_tables() -> dict[str, str]:
     }
 
 
-def link_text(bundle: str, size_bytes: int) -> str:
+def link_text(bundle: str, size_bytes: int, members: Sequence[str] = ()) -> str:
     """The landing page's paragraph linking the bundle (``bundle``: its path in the book;
-    ``size_bytes``: the zip's size)."""
+    ``size_bytes``: the zip's size; ``members``: its file names, which say what it holds)."""
     size = f"{size_bytes / 1e6:.2g} MB" if size_bytes >= 1e6 else f"{size_bytes / 1e3:.3g} kB"
+    held = ["every record of key numbers with its tolerance and report rows (JSON)"]
+    if "runs/nonlinear_runs.csv" in members:
+        held.append(
+            "every FE run the book reads (the linear and non-linear runs with their forces, "
+            "poses and solve statistics, and the FE models with their geometry)"
+        )
+    else:
+        held.append("our FE runs of the designs of Tables 2 and 4 (CSV)")
+    if "data/nonlinear_metamodels/learning_curves.csv" in members:
+        held.append("the learning curves of the meta-models")
+    if EVALUATOR in members:
+        held.append("the real-time model as coefficients (JSON) with a plain-Python evaluator")
     return (
         f"{{download}}`Download the data of this build <{bundle}>` (one zip, {size}): the "
-        "thesis's tables as transcribed (CSV), every record of key numbers with its tolerance "
-        "and report rows (JSON), every FE run the book reads (the linear and non-linear runs with "
-        "their forces, poses and solve statistics, and the FE models with their geometry), the "
-        "learning curves of the meta-models, and the real-time model as coefficients (JSON) "
-        "with a plain-Python evaluator; its README says what each file is, with units."
+        f"thesis's tables as transcribed (CSV), {', '.join(held[:-1])} and {held[-1]}; its "
+        "README says what each file is, with units."
     )
+
+
+def members(path: Path) -> list[str]:
+    """The file names inside the bundle ``path``."""
+    with zipfile.ZipFile(path) as archive:
+        return archive.namelist()
 
 
 def notebook_data(records: Path) -> tuple[dict[str, str], list[str]]:

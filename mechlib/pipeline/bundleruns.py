@@ -34,8 +34,10 @@ README = """\
 runs/     every FE run the book reads from its results store (the runs behind chapter 2's
           tables and figures and the pages beyond it), computed by the commit the landing names:
           models.csv          one row per FE model: model id, mesh ("default" or "lean"),
-                              element size [mm], element, Young's modulus [MPa], Poisson's ratio,
-                              quadrature order, coarsening of the lean mesh, geometry [mm],
+                              element size [mm] (of a lean model: the default mesh's size on whose
+                              stage vertices its pose is fitted), element, Young's modulus [MPa],
+                              Poisson's ratio, quadrature order, coarsening (the default mesh's
+                              growth away from the flexures; empty: its default), geometry [mm],
                               free DOFs (where a run counted them)
           linear_runs.csv     model id, forces T1D1..T3D2 [N], pose x y z [um], thx thy thz
                               [urad] (small-rotation fit of the stage nodes)
@@ -70,7 +72,7 @@ def _model_rows(specs: list[str], sizes: dict[str, int]) -> tuple[list[str], lis
             [
                 f"M{i + 1}",
                 p.get("mesh", ""),
-                float(p["mesh_size"]),
+                float(p["mesh_size"]) if p.get("mesh_size") is not None else "",
                 p.get("element", ""),
                 float(p["young"]),
                 float(p["poisson"]),

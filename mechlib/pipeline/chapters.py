@@ -26,6 +26,7 @@ CHAPTERS: tuple[str, ...] = (
     "published_doe",
     "fivebar_identification",
     "beyond_5r",
+    "beyond_hexflex",
 )
 #: Scheduling only (no input passes): chapter -> the chapter it starts after when make has fewer
 #: job slots than ready chapters. make starts the ready chapter that comes first in its list, so
@@ -35,6 +36,7 @@ DEFERRED: dict[str, str] = {
     "published_doe": "virtual_experiments",
     "fivebar_identification": "virtual_experiments",
     "beyond_5r": "virtual_experiments",
+    "beyond_hexflex": "virtual_experiments",
 }
 #: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
 #: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it

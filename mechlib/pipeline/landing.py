@@ -245,6 +245,7 @@ def landing_markdown(
     provenance: str = "",
     bundle: str = "",
     bundle_bytes: int = 0,
+    bundle_members: Sequence[str] = (),
 ) -> str:
     """The landing page's MyST text (see :func:`write_landing`)."""
     if not isinstance(profile, str) or not _PROFILE.match(profile):
@@ -252,6 +253,7 @@ def landing_markdown(
     rows = verdicts.all_rows(records)
     counts = verdicts.category_counts(rows)
     findings = [line for f in FINDINGS for line in finding_lines(f, records, rows, link)]
+    data_text = bundle_mod.link_text(bundle, bundle_bytes, bundle_members) if bundle else ""
     return "\n".join(
         [
             THESIS_TEXT,
@@ -276,7 +278,7 @@ def landing_markdown(
             profile_text(records, profile),
             "",
             *([f"Made from:\n\n{provenance}", ""] if provenance else []),
-            *(["## Data", "", bundle_mod.link_text(bundle, bundle_bytes), ""] if bundle else []),
+            *(["## Data", "", data_text, ""] if bundle else []),
             RERUN_TEXT,
         ]
     )
@@ -291,6 +293,7 @@ def write_landing(
     provenance: str = "",
     bundle: str = "",
     bundle_bytes: int = 0,
+    bundle_members: Sequence[str] = (),
 ) -> None:
     """Write the landing page ``out`` from the records (only when its text changed).
 
@@ -311,6 +314,8 @@ def write_landing(
         The data bundle's path in the book (``/generated/mechlib-data.zip``), linked when given.
     bundle_bytes : int, optional
         Its size, stated beside the link.
+    bundle_members : sequence of str, optional
+        Its file names: the link's sentence says what it holds from them.
 
     Raises
     ------
@@ -320,7 +325,13 @@ def write_landing(
         For a records folder without records.
     """
     text = landing_markdown(
-        verdicts.load_records(records), profile, link, provenance, bundle, bundle_bytes
+        verdicts.load_records(records),
+        profile,
+        link,
+        provenance,
+        bundle,
+        bundle_bytes,
+        bundle_members,
     )
     out = Path(out)
     if not out.exists() or out.read_text() != text:

@@ -6,7 +6,7 @@ process that runs papermill and draws what it says, so nothing of it lands in th
 page. A campaign whose tasks are all in the cache says nothing. One that computes says, before
 it starts, how many tasks it will compute on how many workers and how long that should take
 (from the seconds a task took on this machine last time), then, on a terminal, keeps one tqdm
-line up to date (tasks done / to compute, cached, workers, seconds a task, ETA); in a log (not
+line up to date (tasks done / to compute, cached, workers, tasks a second, ETA); in a log (not
 a terminal) it writes a line every :data:`LOG_EVERY_S` seconds. At its end: the tasks computed
 and the time they took.
 """
@@ -24,7 +24,7 @@ from typing import Any, TextIO
 LOG_EVERY_S = 30.0
 #: seconds between two reads of the progress file
 POLL_S = 0.25
-#: a campaign estimated to take longer than this says so before it starts (the issue's minute)
+#: a campaign estimated to take longer than this says so before it starts, also on a terminal
 ESTIMATE_FROM_S = 60.0
 
 
@@ -46,9 +46,10 @@ def start_line(name: str, e: dict[str, Any]) -> str:
     if e.get("estimate_s") is None:
         return f"{head}; no time measured on this machine yet (an ETA follows as tasks finish)"
     when = str(e.get("measured_when") or "")[:10]
+    which = "" if e.get("same_model", True) else " on another model of this kind"
     return (
         f"{head}: about {duration(e['estimate_s'])} ({e['per_task_s']:.3g} s a task on one "
-        f"worker, measured on this machine{' on ' + when if when else ''})"
+        f"worker, measured{which} on this machine{' on ' + when if when else ''})"
     )
 
 
@@ -63,13 +64,14 @@ def end_line(name: str, e: dict[str, Any]) -> str:
 
 
 def tick_line(name: str, e: dict[str, Any]) -> str:
-    """A log's progress line: done / to compute, seconds a task, ETA."""
+    """A log's progress line: done / to compute, seconds between two finished tasks (all
+    workers together), ETA."""
     done, todo, elapsed = e["done"], e["to_compute"], e["elapsed_s"]
     rate = elapsed / done if done else float("nan")
     eta = f", ETA {duration(rate * (todo - done))}" if done else ""
     return (
-        f"[{name}] {e['desc']}: {done}/{todo} computed ({e['cached']} cached), "
-        f"{e['workers']} workers, {rate:.3g} s a task{eta}"
+        f"[{name}] {e['desc']}: {done}/{todo} computed ({e['cached']} cached) on "
+        f"{e['workers']} workers, one every {rate:.3g} s{eta}"
     )
 
 

@@ -11,6 +11,7 @@ check a cold re-run gives the same bytes — is the build wing's (:mod:`mechlib.
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -283,7 +284,9 @@ class Recorder:
         ValueError
             A name used twice or not of that form, an empty ``about``, or content of another kind.
         """
-        if not name.replace("_", "").isalnum() or name in {f.rsplit(".", 1)[0] for f in self.data}:
+        if not re.fullmatch(r"[A-Za-z0-9_]+", name) or name in {
+            f.rsplit(".")[0] for f in self.data
+        }:
             raise ValueError(f"data name {name!r} is not [A-Za-z0-9_]+ or was already used")
         if not about.strip():
             raise ValueError(f"data {name!r} needs a one-line description (about), got none")

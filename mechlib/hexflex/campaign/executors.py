@@ -30,10 +30,10 @@ def _limit_blas(threads: int) -> None:
 def worker_pool(workers: int) -> cf.ProcessPoolExecutor:
     """A process pool for FE experiments whose workers share the cores' BLAS threads.
 
-    Each worker's BLAS (the linear model's SuperLU factorisation and SfePy's assembly run
-    through it) gets ``cores // workers`` threads, at least one, instead of every core:
-    ``workers`` processes that each start a thread per core oversubscribe the machine. (The
-    non-linear solve's own kernels run on one thread in any case.)
+    Each worker's BLAS gets ``cores // workers`` threads, at least one, instead of every core:
+    ``workers`` processes that each start a thread per core oversubscribe the machine. (An FE
+    task itself, its model's build included, runs on one BLAS thread wherever it runs: the
+    same bits in a pool, in-process or on Dask.)
 
     Parameters
     ----------

@@ -257,7 +257,7 @@ def run_experiments(
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(cache_result, path, len(rows)))
             log_task(path, spec.key(), kind, d[rows], steps, hit=False)
-        fut.add_done_callback(lambda _: meter.update())
+        fut.add_done_callback(lambda _: meter.update())  # live, also in-process
         pending[fut] = rows
     failed: list[tuple[int, Exception]] = []
     pending_rows = {int(rows[0]): rows for rows in pending.values()}
@@ -273,7 +273,7 @@ def run_experiments(
                 cache_result(
                     cache_dir / f"{_task_key(spec, kind, d[rows], steps)}.npy", len(rows), fut
                 )
-    meter.close(failed=len(failed))
+    meter.close(done=len(pending), failed=len(failed))  # late callbacks count for nothing
     if failed:
         failed.sort(key=lambda p: p[0])
         first, err = failed[0]

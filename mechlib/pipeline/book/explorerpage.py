@@ -221,13 +221,15 @@ def page_markdown(
             f"Legendre polynomials √(2k+1) P_k(u), u = force / {amp:g} N, evaluated by their "
             "three-term recurrence in the same operations and order as the plain-Python "
             "evaluator of the data bundle, so that the browser's pose equals it to round-off. "
-            "The inverse starts from the linear inverse at zero force and takes Newton steps "
+            "The inverse starts at zero force (its first step inverts the model's tangent "
+            "there) and takes Newton steps "
             "with the polynomial's exact Jacobian (the derivative of the same recurrence), "
             "halving a step that does not reduce the largest error, until the target is met to "
             f"round-off; forces beyond ±{amp:g} N, where the model was not validated, are shown "
-            "with a warning. When the book is built, a headless browser evaluates a Sobol' "
-            "sample of force vectors through this page's own functions and compares the poses "
-            "with the Python evaluation of the same model, and checks the inverse's round trip.",
+            "with a warning. The book's checks run this page in a headless browser: a Sobol' "
+            "sample of force vectors goes through its own functions and the poses are compared "
+            "with the Python evaluation of the same model, and the inverse's round trip is "
+            "checked.",
             "",
         ]
     )

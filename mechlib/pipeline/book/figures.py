@@ -186,6 +186,25 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "Two panels of curves against the noise level, one per posture count.",
         ),
     },
+    "beyond_hexflex": {
+        "bh-08": (
+            "The parallelogram flexure's stage displacement u_x/L, u_y/L and rotation φ against "
+            "the transverse load A_y, per axial load A_x (columns): markers, the published 3-D FE "
+            "sweep of Su and Survey per printed couple B (rotation recovered from the reported "
+            "value); solid lines, our elastica under the couple the FE applied; dashed, under "
+            "the couple the file prints.",
+            "Nine panels in three rows (axial and transverse displacement, rotation) and three "
+            "columns (A_x = -5, 0, 5), each with marker series for B = -3, 0, 3 lying on solid "
+            "curves, and dashed curves that leave them.",
+        ),
+        "bh-21": (
+            "Our elastica of the parallelogram flexure drawn to scale at the loads of the "
+            "parameter drawn_loads: beams and stage (blue) over the unloaded mechanism (grey), "
+            "with the load point of the elastica (dot) and of the published 3-D FE (cross).",
+            "Side views of two beams clamped on the left and joined by a block on the right, "
+            "bent into S-shapes, one panel per load.",
+        ),
+    },
     "beyond_5r": {
         "b5r-06": (
             "Poses selected by active calibration on the 5R, the 3-RRR and the 6-UPS, per leg "
