@@ -174,7 +174,8 @@ def test_the_bounds_follow_from_poisson_and_the_claims_read_them() -> None:
     more = "ours.parallelogram.more_compliant"
     assert _verdict(more, {"excess.uy_pct": [0.5, 5], "excess.ux_pct": [-1, 9]}) == claims.MIXED
     small = "ours.parallelogram.phi_small_loads"
-    assert _verdict(small, {"small.phi_worst_rad": 2e-4}) == claims.DOES_NOT_HOLD
+    assert _verdict(small, {"small.phi_worst_share_pct": 12.0}) == claims.DOES_NOT_HOLD
+    assert _verdict(small, {"small.phi_worst_share_pct": 3.4}) == claims.HOLDS
     stretch = "ours.parallelogram.stretch_turns_stage"
     assert _verdict(stretch, {"couple.median_rel_pct": [3.0, 90.0]}) == claims.HOLDS
     assert _verdict(stretch, {"couple.median_rel_pct": [3.0, 40.0]}) == claims.MIXED
