@@ -32,6 +32,8 @@ from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
 from mechlib.pipeline import bundle, bundleruns, landing, provenance, storecmd
 from mechlib.pipeline.book import explorer, methods, reportpage, verdictrole
 from mechlib.pipeline.book.cells import prepare_notebook
+from mechlib.pipeline.chapters import MAIN_PARAMETERS
+from mechlib.pipeline.execute import fe_summary_path
 from mechlib.reporting import artefacts, claimlist, verdicts
 
 REPORT_HEADER = """---
@@ -144,7 +146,10 @@ def copy_chapters(
         )
         if made:
             seconds = nb.get("metadata", {}).get("papermill", {}).get("duration")
-            lines = provenance.rerun_lines(nb_path.stem, seconds)
+            summary = fe_summary_path(nb_path, nb_path.stem)
+            tasks = json.loads(summary.read_text()) if summary.is_file() else None
+            main = MAIN_PARAMETERS.get(nb_path.stem, ())
+            lines = provenance.rerun_lines(nb_path.stem, seconds, tasks, main)
             nb["cells"].append(provenance.notebook_cell(f"{made}\n{lines}"))
         _write(chapters / nb_path.name, json.dumps(nb, indent=1, ensure_ascii=False) + "\n")
     return sections

@@ -38,6 +38,18 @@ DEFERRED: dict[str, str] = {
     "beyond_5r": "virtual_experiments",
     "beyond_hexflex": "virtual_experiments",
 }
+#: The parameters a reader changes first, per chapter (each box "How this page was built" names
+#: them; every name is a parameter of the chapter's parameters cell: a test checks it).
+MAIN_PARAMETERS: dict[str, tuple[str, ...]] = {
+    "hexflex_model": ("thickness", "mesh_fraction", "free_dimensions", "fit_tol"),
+    "virtual_experiments": ("seed", "nonlinear_runs", "nonlinear_mesh", "workers"),
+    "nonlinear_metamodels": ("training_runs", "families", "goal_pct", "workers"),
+    "nonlinear_family": ("thicknesses", "family_runs", "nonlinear_mesh", "workers"),
+    "published_doe": ("seed", "n_random_designs", "lenth_alpha", "penalty"),
+    "fivebar_identification": ("seed", "sigma", "n_per_leg", "n_trials", "solver"),
+    "beyond_5r": ("seed", "sigma", "n_trials", "n_trials_5r"),
+    "beyond_hexflex": ("drawn_loads",),
+}
 #: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
 #: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it
 #: itself); a key ending in ``.*`` passes every value under that prefix, as a mapping by the rest

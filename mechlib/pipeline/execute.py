@@ -10,6 +10,7 @@ library code reads.
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -151,6 +152,12 @@ def kernel_died_at_start(stderr: str) -> bool:
     return _KERNEL_DIED in stderr
 
 
+def fe_summary_path(output: Path, name: str) -> Path:
+    """Where :func:`execute` leaves the FE task counts of notebook ``name`` executed into
+    ``output`` (``<output folder>/<name>.fe.json``: total and read from the cache)."""
+    return Path(output).parent / f"{name}.fe.json"
+
+
 def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = ()) -> int:
     """Execute ``notebook`` into ``output`` with papermill ``args`` (a profile's ``-f`` file …),
     its record into ``records`` and its chapter inputs read from there; papermill's exit code."""
@@ -162,10 +169,12 @@ def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = (
     for attempt in range(KERNEL_START_ATTEMPTS):
         proc = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
         said = []
-        with ProgressView(progress, Path(notebook).stem):  # the FE campaigns' progress
+        with ProgressView(progress, Path(notebook).stem) as view:  # the FE campaigns' progress
             for line in proc.stderr:  # passed on as it comes, and kept
                 sys.stderr.write(line)
                 said.append(line)
+        # what the provenance box says of the run's FE tasks (read by the book build)
+        fe_summary_path(Path(output), Path(notebook).stem).write_text(json.dumps(view.tasks))
         progress.unlink(missing_ok=True)
         if proc.wait() == 0 or not kernel_died_at_start("".join(said)):
             break

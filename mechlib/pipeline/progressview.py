@@ -90,6 +90,7 @@ class ProgressView:
         self._bar = None
         self._last_log = 0.0
         self._offset = 0
+        self.tasks = {"total": 0, "cached": 0}  # over the notebook's campaigns
 
     def __enter__(self) -> ProgressView:
         self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -132,7 +133,10 @@ class ProgressView:
 
     def show(self, e: dict[str, Any]) -> None:
         """Draw one event: a ``note``, or a ``start``, ``tick`` or ``end`` of a campaign that
-        computes."""
+        computes (every ``start`` is counted in :attr:`tasks`)."""
+        if e["event"] == "start":
+            self.tasks["total"] += int(e["total"])
+            self.tasks["cached"] += int(e["cached"])
         if e["event"] == "note":
             if self._bar is not None:
                 self._bar.write(f"[{self.name}] {e['desc']}: {e['text']}", file=self.stream)

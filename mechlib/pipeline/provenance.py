@@ -93,18 +93,35 @@ def block(made: str) -> str:
     return f"\n```{{admonition}} {BLOCK_TITLE}\n:class: dropdown\n\n{made}\n```\n"
 
 
-def rerun_lines(name: str, seconds: float | None) -> str:
-    """Markdown lines for a chapter's provenance box: how long its default run took here and the
-    command that runs it again with a reader's parameters."""
+def rerun_lines(
+    name: str,
+    seconds: float | None,
+    tasks: dict[str, int] | None = None,
+    main: tuple[str, ...] = (),
+) -> str:
+    """Markdown lines for a chapter's provenance box: how long its default run took here, how
+    many of its FE tasks were read rather than solved (``tasks``: ``total`` and ``cached``, from
+    the execution; unknown: not said), the parameters a reader changes first (``main``) and the
+    command that runs it again with a reader's."""
     took = (
-        f"- this page's default run took {seconds:.0f} s on this machine, its finite-element runs "
-        "read from the results store (a run with new forces or a new geometry solves them anew)"
+        f"- this page's default run took {seconds:.0f} s on this machine"
         if seconds is not None
         else "- this page's run time was not recorded"
     )
+    if tasks and tasks.get("total"):
+        share = 100 * tasks["cached"] / tasks["total"]
+        took += (
+            f"; of its {tasks['total']:,} finite-element tasks, {tasks['cached']:,} "
+            f"({share:.0f} %) were read from the FE cache seeded from the results store, not "
+            "solved (a run with new forces or a new geometry solves them anew)"
+        )
+    elif tasks is not None:
+        took += "; it runs no finite-element task"
+    names = ", ".join(f"`{p}`" for p in main)
+    first = f"its first code cell: {names} first" if main else "its first code cell"
     return (
-        f"{took}\n- run it again with your own parameters (the names and ranges are in its first "
-        f"code cell): `make run NB={name} ARGS='-p <name> <value>'`, into `build/runs/`"
+        f"{took}\n- run it again with your own parameters (names and ranges in {first}): "
+        f"`make run NB={name} ARGS='-p <name> <value>'`, into `build/runs/`"
     )
 
 
