@@ -70,6 +70,15 @@ def test_the_sample_takes_a_task_of_every_model_first() -> None:
         assert len({e["spec"] for e in two}) == 2  # fewer draws than models: distinct models
 
 
+def test_a_sample_smaller_than_the_models_draws_from_both_mechanisms() -> None:
+    # 40 HexFlex models and one compliant layout: two draws take one of each, whatever the seed
+    specs = [f'{{"geometry": {i}}}' for i in range(40)] + ['{"mechanism": {"mesh_size": 10}}']
+    entries = [{"file": f"{i}.npy", "kind": "nonlinear", "spec": s} for i, s in enumerate(specs)]
+    for seed in range(8):
+        picked = cc.sample(entries, {"nonlinear": 2}, seed=seed)
+        assert sorted(e["spec"].startswith('{"mechanism"') for e in picked) == [False, True]
+
+
 def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> None:
     from mechlib.hexflex.campaign.store import Entry
 

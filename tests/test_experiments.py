@@ -80,11 +80,55 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
         "mechlib.hexflex.campaign.taskcache",
         "mechlib.paths",
     }
+    # the runner also takes a compliant layout's specification: that code is in the layout's
+    # tasks' key (the test below), not the HexFlex's
+    runner |= {m for m in out.stdout.split() if m.startswith("mechlib.compliant")}
     loaded = set(out.stdout.split()) - runner
     keyed = set(model_modules())
     assert {"mechlib.hexflex.fe.factor", "mechlib.hexflex.fe.svk_tangent"} <= keyed
     # the runner's own code defines no result
     assert "mechlib.hexflex.campaign.experiments" not in keyed
+    assert loaded <= keyed, sorted(loaded - keyed)
+
+
+def test_every_module_of_a_layouts_task_is_in_its_cache_key() -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, numpy as np; from mechlib.hexflex.campaign import experiments as ex; "
+        "from mechlib.compliant.spec import MechanismSpec; "
+        "from mechlib.parallelogram.mechanism import layout; "
+        "spec = MechanismSpec(layout(stage_young=5e6), 10.0, 1); "
+        "ex._task(spec, 'nonlinear', np.array([[0.0, 1000.0, 0.0]]), 1); "
+        "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
+        "and getattr(sys.modules[m], '__file__', None)))"
+    )
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root
+    )
+    from mechlib.compliant.spec import MechanismSpec
+
+    keyed = set(model_modules(MechanismSpec.TASK_MODULES))
+    runner = {
+        "mechlib.hexflex.campaign",
+        "mechlib.hexflex.campaign.experiments",
+        "mechlib.hexflex.campaign.executors",
+        "mechlib.hexflex.campaign.spec",
+        "mechlib.progress",
+        "mechlib.hexflex.campaign.sources",
+        "mechlib.hexflex.campaign.taskcache",
+        "mechlib.paths",
+        "mechlib.parallelogram",  # the test's layout, given to the task as data
+        "mechlib.parallelogram.mechanism",
+        "mechlib.parallelogram.published",
+        "mechlib.parallelogram.published_sweep",
+        "mechlib.hexflex.fe.lean",  # the runner's HexFlex specification imports them
+        "mechlib.compliant",  # the package: its docstring only
+    }
+    loaded = set(out.stdout.split()) - runner
+    assert {"mechlib.compliant.solver", "mechlib.compliant.problem"} <= keyed
     assert loaded <= keyed, sorted(loaded - keyed)
 
 
@@ -106,7 +150,7 @@ def test_the_cache_is_keyed_by_the_model_code(tmp_path, monkeypatch) -> None:
     (cached,) = tmp_path.glob("*.npy")
     np.save(cached, np.zeros((5, 6)))
     # the same spec and forces after a change to the mesher or solver: the stale file is ignored
-    monkeypatch.setattr(ex, "model_code_fingerprint", lambda: "changed-code")
+    monkeypatch.setattr(ex, "model_code_fingerprint", lambda *modules: "changed-code")
     assert ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False).all()
     assert len(list(tmp_path.glob("*.npy"))) == 2
 

@@ -75,3 +75,10 @@ def test_a_drawn_load_out_of_the_elastica_range_is_refused_by_name(tmp_path: Pat
     assert code != 0
     assert "a_y (F_y L^2/EI) must be in [-40.0, 40.0], got 50.0" in output
     assert not (tmp_path / "beyond_hexflex.json").exists()
+
+
+def test_a_mesh_size_out_of_range_is_refused_before_any_fe_run(tmp_path: Path) -> None:
+    code, output = _run_with("parallelogram_fe", ["-p", "mesh_size", "50"], tmp_path)
+    assert code != 0
+    assert "mesh_size [mm] must be" in output and "50" in output
+    assert not (tmp_path / "parallelogram_fe.json").exists()

@@ -83,7 +83,7 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
     m = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**m, "version": 99}))
     with pytest.raises(
-        st.StoreError, match=f"format version 99; this code reads version {st.STORE_VERSION}"
+        st.StoreError, match="format version 99; this code reads versions 2, 3"
     ):
         st.read_store(folder)
     (folder / st.MANIFEST).write_text("{not json")
@@ -212,3 +212,33 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     manifest = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**manifest, "fingerprint": "0" * 16}))
     assert "computed by other FE code" in storecmd.landing_line(folder)
+
+
+def test_a_store_holds_both_mechanisms_and_seeds_each_by_its_own_code(built, tmp_path) -> None:
+    from mechlib.compliant.spec import MechanismSpec
+    from mechlib.parallelogram import ourfe
+    from mechlib.parallelogram.mechanism import layout
+
+    cache, log = built
+    pspec = MechanismSpec(layout(stage_young=5e6), 10.0, 1)
+    loads = ourfe.to_newton([[0.0, 1.0, 0.0], [1.0, 0.5, 0.2]])
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv(FE_LOG_ENV, str(log))
+        want = ex.run_experiments(pspec, loads, kind="nonlinear", steps=1, cache_dir=cache,
+                                  progress=False)  # fmt: skip
+    entries = st.entries_from_cache(log, cache)
+    assert sorted({st.family(e.spec) for e in entries}) == ["hexflex", "mechanism"]
+    folder = st.write_store(entries, tmp_path / "store")
+    manifest, back = st.read_store(folder)
+    assert manifest["version"] == 3 and manifest["fingerprints"] == st.fingerprints()
+    assert sorted(e.forces.shape[1] for e in back) == [3, 3, 6, 6, 6]
+    fresh = tmp_path / "fresh"
+    assert st.seed_cache(folder, fresh) == 5
+    got = ex.run_experiments(pspec, loads, kind="nonlinear", steps=1, cache_dir=fresh,
+                             progress=False)  # fmt: skip
+    np.testing.assert_array_equal(got, want)
+    # the layout's code changed since: its entries are left out, the HexFlex's still seeded
+    now = {**st.fingerprints(), "mechanism": "0" * 16}
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(st, "fingerprints", lambda: now)
+        assert st.seed_cache(folder, tmp_path / "fresh2") == 3

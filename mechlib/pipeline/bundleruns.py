@@ -23,7 +23,7 @@ import numpy as np
 
 from mechlib import published as pub
 from mechlib.hexflex.campaign.experiments import POSE_CONVENTIONS, SOLVE_STATS
-from mechlib.hexflex.campaign.store import read_store
+from mechlib.hexflex.campaign.store import family, read_store
 from mechlib.pipeline.bundle import csv_text
 
 _FORCES = [f"{f} [N]" for f in pub.FACTORS]
@@ -95,6 +95,8 @@ def store_tables(store: Path) -> dict[str, str]:
         :func:`~mechlib.hexflex.campaign.store.read_store` says.
     """
     _, entries = read_store(Path(store))
+    # the HexFlex's runs (the parallelogram's are in its page's data: its sweep table)
+    entries = [e for e in entries if family(e.spec) == "hexflex"]
     order = sorted({e.spec for e in entries}, key=lambda s: (json.loads(s).get("mesh", ""), s))
     model = {s: f"M{i + 1}" for i, s in enumerate(order)}
     sizes = {e.spec: int(e.results[0, 0]) for e in entries if e.kind == "size"}

@@ -27,6 +27,7 @@ CHAPTERS: tuple[str, ...] = (
     "fivebar_identification",
     "beyond_5r",
     "beyond_hexflex",
+    "parallelogram_fe",
 )
 #: Scheduling only (no input passes): chapter -> the chapter it starts after when make has fewer
 #: job slots than ready chapters. make starts the ready chapter that comes first in its list, so
@@ -37,6 +38,7 @@ DEFERRED: dict[str, str] = {
     "fivebar_identification": "virtual_experiments",
     "beyond_5r": "virtual_experiments",
     "beyond_hexflex": "virtual_experiments",
+    "parallelogram_fe": "virtual_experiments",
 }
 #: The parameters a reader changes first, per chapter (each box "How this page was built" names
 #: them; every name is a parameter of the chapter's parameters cell: a test checks it).
@@ -49,6 +51,7 @@ MAIN_PARAMETERS: dict[str, tuple[str, ...]] = {
     "fivebar_identification": ("seed", "sigma", "n_per_leg", "n_trials", "solver"),
     "beyond_5r": ("seed", "sigma", "n_trials", "n_trials_5r"),
     "beyond_hexflex": ("drawn_loads",),
+    "parallelogram_fe": ("mesh_size", "layers", "sweep_lines", "curve_sizes", "budget_scales"),
 }
 #: Chapter inputs: chapter -> {parameter: (upstream chapter, record key)}. Whoever executes the
 #: chapter passes each parameter the upstream chapter's recorded value (unless the run gives it

@@ -26,6 +26,7 @@ from mechlib.reporting.claims import (
     paired,
     within,
 )
+from mechlib.reporting.mechanismclaims import parallelogram_fe_claims
 
 OURS = cat.SOURCE_OURS
 VX, FB, B5R = "virtual_experiments", "fivebar_identification", "beyond_5r"
@@ -368,6 +369,6 @@ def _ours_chapter2() -> list[ClaimSpec]:
 
 
 def our_claims() -> list[ClaimSpec]:
-    """Our findings: chapter 2's pages, the 5R's sensitivity, "Beyond the HexFlex", then
-    "Beyond the 5R"."""
-    return [*_ours_chapter2(), *_beyond_hexflex(), *_beyond_5r()]
+    """Our findings: chapter 2's pages, the 5R's sensitivity, "Beyond the HexFlex", our FE of
+    the parallelogram, then "Beyond the 5R"."""
+    return [*_ours_chapter2(), *_beyond_hexflex(), *parallelogram_fe_claims(), *_beyond_5r()]

@@ -18,6 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.compliant.spec import MechanismSpec
 from mechlib.hexflex.campaign.executors import worker_pool
 from mechlib.hexflex.campaign.experiments import (
     KINDS,
@@ -26,6 +27,7 @@ from mechlib.hexflex.campaign.experiments import (
     release_models,
     task_poses,
 )
+from mechlib.hexflex.campaign.store import family
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.params import check_int
 
@@ -78,17 +80,32 @@ def read_log(path: Path) -> list[dict]:
     return list(seen.values())
 
 
-def spec_from_key(text: str) -> ModelSpec:
-    """The :class:`ModelSpec` whose :meth:`ModelSpec.key` is ``text``."""
+def spec_from_key(text: str) -> ModelSpec | MechanismSpec:
+    """The :class:`ModelSpec` (or, for another mechanism, the
+    :class:`~mechlib.compliant.spec.MechanismSpec`) whose ``key()`` is ``text``."""
     fields = json.loads(text)
+    if "mechanism" in fields:
+        return MechanismSpec.from_key(text)
     geometry = HexFlexGeometry(**fields.pop("geometry"))
     return ModelSpec(geometry=geometry, **fields)
+
+
+def _one_per_family(specs: list[str], order: np.ndarray) -> list[int]:
+    """``order`` (indices into ``specs``) with the first model of each mechanism family moved
+    to the front, so that a sample smaller than the number of models still draws from both the
+    HexFlex and a compliant layout when both are logged."""
+    first: dict[str, int] = {}
+    for g in order.tolist():
+        first.setdefault(family(specs[g]), g)
+    lead = sorted(first.values(), key=order.tolist().index)
+    return lead + [g for g in order.tolist() if g not in lead]
 
 
 def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEED) -> list[dict]:
     """A seeded sample of logged tasks: ``per_kind[kind]`` of each kind (all if fewer), in log
     order, spread over models: one task of every model (``spec``) first — of as many models,
-    drawn at random, when there are more models than draws —, the rest drawn from all others.
+    drawn at random, when there are more models than draws, one of each mechanism family
+    (the HexFlex, a compliant layout) among them —, the rest drawn from all others.
 
     Returns
     -------
@@ -108,7 +125,8 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
         groups: dict[str, list[int]] = {}
         for i in idx:
             groups.setdefault(entries[i].get("spec", ""), []).append(i)
-        order = rng.permutation(len(groups))[: min(n, len(groups))]
+        order = _one_per_family(list(groups), rng.permutation(len(groups)))
+        order = order[: min(n, len(groups))]
         members = list(groups.values())
         picked = [int(rng.choice(members[g])) for g in sorted(order)]
         taken = set(picked)

@@ -22,9 +22,12 @@ from pathlib import Path
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from mechlib.compliant.model import MechanismModel
+from mechlib.compliant.spec import MechanismSpec
 from mechlib.hexflex.campaign.executors import InProcessExecutor, worker_count
 from mechlib.hexflex.campaign.spec import MESHES as MESHES  # re-exported: notebooks check it
 from mechlib.hexflex.campaign.spec import ModelSpec
+from mechlib.hexflex.campaign.spec import check_forces_design as check_forces_design
 from mechlib.hexflex.campaign.taskcache import (
     cache_result,
     cached_result,
@@ -33,7 +36,7 @@ from mechlib.hexflex.campaign.taskcache import (
     task_key,
 )
 from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
-from mechlib.hexflex.fe.model import HexFlexModel, check_forces
+from mechlib.hexflex.fe.model import HexFlexModel
 from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.params import check_choice, check_int
@@ -59,18 +62,20 @@ POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 RESULT_COLUMNS = {**POSE_COLUMNS, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
+#: a campaign's model: the HexFlex's specification or a compliant layout's
+Spec = ModelSpec | MechanismSpec
 KIND_NAMES = {"linear": "linear FE runs", "nonlinear": "non-linear FE runs", "size": "model sizes"}
 """What a campaign of each kind is called in its progress reports."""
 
 
-def model_for(spec: ModelSpec) -> HexFlexModel:
+def model_for(spec: Spec) -> HexFlexModel | MechanismModel:
     """The model of ``spec``, built once per process (one model for every ``quad_order``: the
     linear model's quadrature is fixed)."""
-    return _model(replace(spec, quad_order=QUAD_ORDER))
+    return _model(replace(spec, quad_order=QUAD_ORDER) if isinstance(spec, ModelSpec) else spec)
 
 
 @lru_cache(maxsize=4)
-def _model(spec: ModelSpec) -> HexFlexModel:
+def _model(spec: Spec) -> HexFlexModel | MechanismModel:
     with threadpool_limits(limits=1, user_api="blas"):  # the same bits wherever it is built
         return spec.build()
 
@@ -123,18 +128,19 @@ class FailedRun:
 
 
 @lru_cache(maxsize=4)
-def solver_for(spec: ModelSpec) -> NonlinearSolver:
+def solver_for(spec: Spec) -> NonlinearSolver:
     """The non-linear solver of ``spec``'s model, built once per process (on
     :func:`model_for`'s model)."""
-    return NonlinearSolver(model_for(spec), quad_order=spec.quad_order)
+    solver = getattr(spec, "SOLVER", NonlinearSolver)  # a mechanism's spec names its own
+    return solver(model_for(spec), quad_order=spec.quad_order)
 
 
-def _task(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+def _task(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     with threadpool_limits(limits=1, user_api="blas"):  # in a pool, in-process or on Dask alike
         return _solve(spec, kind, forces, steps)
 
 
-def _solve(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+def _solve(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     if kind == "linear":
         return model_for(spec).poses(forces)
     if kind == "size":
@@ -143,7 +149,7 @@ def _solve(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.nda
     model = solver.model
     rows = []
     for f in forces:
-        u, stats = solver.solve(f, steps=steps)
+        u, stats = solver.solve(f, steps=steps, method=spec.SOLVE_METHOD)
         exact = finite_poses(*model.stage_motion(u))
         spent = [sum(stats.iterations), sum(stats.factorisations), stats.restarts, stats.residual]
         # the small-rotation pose as the linear model computes it (bit for bit), then the others
@@ -153,30 +159,19 @@ def _solve(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.nda
     return np.array(rows)
 
 
-def task_poses(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
+def task_poses(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     """What one task of :func:`run_experiments` computes and caches, computed now: per row of
     ``forces``, ``RESULT_COLUMNS[kind]`` columns (the poses; a non-linear run's ``SOLVE_STATS``
     after them) — for checking a cached result against a fresh one."""
     return _task(spec, kind, np.asarray(forces, dtype=float), steps)
 
 
-def _task_key(spec: ModelSpec, kind: str, forces: np.ndarray, steps: int) -> str:
-    return task_key(spec.key(), kind, forces, steps, model_code_fingerprint())
-
-
-def check_forces_design(design: object) -> np.ndarray:
-    """A design of actuator forces: (n, 6) finite values within ±``MAX_FORCE_N`` N."""
-    d = np.asarray(design, dtype=float)
-    if d.ndim != 2 or d.shape[1] != 6:
-        raise ValueError(
-            f"design must have 6 factor columns (T1D1 … T3D2) and one row per run, got shape "
-            f"{d.shape}"
-        )
-    return check_forces("design [N]", d)
+def _task_key(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> str:
+    return task_key(spec.key(), kind, forces, steps, model_code_fingerprint(spec.TASK_MODULES))
 
 
 def run_experiments(
-    spec: ModelSpec,
+    spec: Spec,
     design: object,
     *,
     kind: str = "linear",
@@ -192,8 +187,9 @@ def run_experiments(
 
     Parameters
     ----------
-    spec : ModelSpec
-        The FE model.
+    spec : ModelSpec or MechanismSpec
+        The FE model (the HexFlex's, or a compliant layout's: its design has one column per
+        load port, in the ports' units).
     design : array_like (n, 6)
         Actuator forces per run, columns T1D1 … T3D2, within ±``MAX_FORCE_N``.
     kind : {"linear", "nonlinear", "size"}
@@ -222,7 +218,7 @@ def run_experiments(
     ExperimentError
         When tasks fail: names the failed runs, and carries every completed pose.
     """
-    d = check_forces_design(design)
+    d = spec.check_design(design)
     kind = check_choice("kind", kind, KINDS)
     allowed = (*POSE_CONVENTIONS, "all", "stats") if kind == "nonlinear" else ("small",)
     pose = check_choice("pose", pose, allowed)
@@ -296,16 +292,16 @@ def run_experiments(
     return out[:, cols].copy()
 
 
-def model_size(spec: ModelSpec, cache_dir: Path | None = None) -> int:
+def model_size(spec: Spec, cache_dir: Path | None = None) -> int:
     """Free DOFs (after clamping the ground) of ``spec``'s model, read from ``cache_dir`` when a
     build counted them before (a ``"size"`` task of :func:`run_experiments`, one row of zero
     forces); ``cache_dir=None``: no cache, the model is built."""
-    zeros = np.zeros((1, 6))
+    zeros = np.zeros((1, spec.n_loads))
     return int(run_experiments(spec, zeros, kind="size", cache_dir=cache_dir, progress=False)[0, 0])
 
 
 def run_keeping_failures(
-    spec: ModelSpec, design: object, **kwargs
+    spec: Spec, design: object, **kwargs
 ) -> tuple[np.ndarray, np.ndarray, list[FailedRun]]:
     """:func:`run_experiments` for statistics that must leave failed runs out, and say so.
 
@@ -324,7 +320,7 @@ def run_keeping_failures(
     failures : list of FailedRun
         The other rows, by index, with their forces, last residual and error.
     """
-    d = check_forces_design(design)
+    d = spec.check_design(design)
     try:
         return np.arange(len(d)), run_experiments(spec, d, **kwargs), []
     except ExperimentError as err:

@@ -20,12 +20,13 @@ TASK_MODULES: tuple[str, ...] = (
 )
 
 
-def model_modules() -> tuple[str, ...]:
-    """The mechlib modules a task's results depend on: ``TASK_MODULES`` and every mechlib
-    module they import, directly or not, at module level or inside a function (read from the
-    sources' import statements), sorted."""
+def model_modules(task_modules: tuple[str, ...] = TASK_MODULES) -> tuple[str, ...]:
+    """The mechlib modules a task's results depend on: ``task_modules`` (default the HexFlex's
+    ``TASK_MODULES``; a mechanism's spec names its own) and every mechlib module they import,
+    directly or not, at module level or inside a function (read from the sources' import
+    statements), sorted."""
     seen: set[str] = set()
-    todo = list(TASK_MODULES)
+    todo = list(task_modules)
     while todo:
         name = todo.pop()
         if name in seen:

@@ -6,9 +6,13 @@ from __future__ import annotations
 import hashlib
 import json
 from dataclasses import asdict, dataclass
+from typing import ClassVar
 
+import numpy as np
+
+from mechlib.hexflex.campaign.sources import TASK_MODULES
 from mechlib.hexflex.fe.lean import lean_model
-from mechlib.hexflex.fe.model import HexFlexModel
+from mechlib.hexflex.fe.model import HexFlexModel, check_forces
 from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_choice, check_float, check_int
@@ -38,6 +42,16 @@ class ModelSpec:
     #: the default mesh's growth away from the flexures (:class:`HexFlexModel`'s ``coarsening``;
     #: None: its default)
     coarsening: float | None = None
+    #: how a campaign's non-linear runs iterate (:meth:`NonlinearSolver.solve`'s ``method``)
+    SOLVE_METHOD: ClassVar[str] = "modified"
+    #: the modules a task runs (its cache keys' code fingerprint follows their imports)
+    TASK_MODULES: ClassVar[tuple[str, ...]] = TASK_MODULES
+    #: a design's columns: the six actuator forces
+    n_loads: ClassVar[int] = 6
+
+    def check_design(self, design: object) -> np.ndarray:
+        """A design of actuator forces: (n, 6) finite values within ±``MAX_FORCE_N`` N."""
+        return check_forces_design(design)
 
     def __post_init__(self) -> None:
         check_int("quad_order", self.quad_order, low=2, high=10)
@@ -77,3 +91,14 @@ class ModelSpec:
             element=self.element,
             coarsening=self.coarsening,
         )
+
+
+def check_forces_design(design: object) -> np.ndarray:
+    """A design of actuator forces: (n, 6) finite values within ±``MAX_FORCE_N`` N."""
+    d = np.asarray(design, dtype=float)
+    if d.ndim != 2 or d.shape[1] != 6:
+        raise ValueError(
+            f"design must have 6 factor columns (T1D1 … T3D2) and one row per run, got shape "
+            f"{d.shape}"
+        )
+    return check_forces("design [N]", d)

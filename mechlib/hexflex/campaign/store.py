@@ -16,6 +16,14 @@ manifest's, an entry whose key is not the digest of its own inputs (an edited fo
 specification) or whose forces lie outside the model's force bound, and a store computed by
 other FE code than the current one. Writing is atomic: a new store replaces the old one whole,
 or not at all.
+
+Two mechanisms share a store (format 3): the HexFlex's tasks (:class:`ModelSpec`, six actuator
+forces) and those of a compliant layout (:class:`~mechlib.compliant.spec.MechanismSpec`, its own
+load ports and bounds). Each family's keys carry the fingerprint of its own code, so the
+manifest keeps one per family (:data:`FAMILIES`); the HexFlex's is also ``fingerprint``, as in
+format 2, which is still read. A store whose HexFlex fingerprint is not the current code's is
+refused; its entries of a family whose code changed since are not seeded (the build computes
+them again).
 """
 
 from __future__ import annotations
@@ -26,16 +34,35 @@ import os
 import shutil
 import tempfile
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
+from mechlib.compliant.spec import MechanismSpec
 from mechlib.hexflex.campaign.experiments import KINDS, RESULT_COLUMNS
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 
-#: Format of ``manifest.json`` and ``results.npz`` this code reads and writes.
-STORE_VERSION = 2
+#: Format of ``manifest.json`` and ``results.npz`` this code writes; it reads this one and
+#: :data:`READS`.
+STORE_VERSION = 3
+READS = (2, 3)
+#: the families of tasks a store holds: the HexFlex's, a compliant layout's
+FAMILIES: tuple[str, ...] = ("hexflex", "mechanism")
+
+
+def family(spec: str) -> str:
+    """The family (:data:`FAMILIES`) of a task's specification text."""
+    return "mechanism" if spec.startswith('{"mechanism"') else "hexflex"
+
+
+def fingerprints() -> dict[str, str]:
+    """The current code's fingerprint of each family's tasks."""
+    return {"hexflex": model_code_fingerprint(),
+            "mechanism": model_code_fingerprint(MechanismSpec.TASK_MODULES)}  # fmt: skip
+
+
 MANIFEST = "manifest.json"
 RESULTS = "results.npz"
 #: manifest fields every store has (the build wing may add more: commit, processor, timings)
@@ -50,11 +77,12 @@ class StoreError(RuntimeError):
 
 @dataclass(frozen=True)
 class Entry:
-    """One FE task: its cache key, model specification (:meth:`ModelSpec.key` text), kind,
-    load steps, forces (rows, 6) [N] and results (rows, ``RESULT_COLUMNS[kind]``): the poses
-    [µm, µrad] (6 of a linear task, 18 of a non-linear one: three conventions) and a non-linear
-    run's solve statistics after them (``SOLVE_STATS``: corrections, factorisations, restarts,
-    final relative residual)."""
+    """One FE task: its cache key, model specification (:meth:`ModelSpec.key` text, or a
+    compliant layout's :meth:`MechanismSpec.key`), kind, load steps, forces (rows, 6) [N] (a
+    layout's loads: rows, its ports, in their units) and results (rows,
+    ``RESULT_COLUMNS[kind]``): the poses [µm, µrad] (6 of a linear task, 18 of a non-linear
+    one: three conventions) and a non-linear run's solve statistics after them
+    (``SOLVE_STATS``: corrections, factorisations, restarts, final relative residual)."""
 
     key: str
     spec: str
@@ -113,6 +141,12 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
     specs = sorted({e.spec for e in entries})
     rows = np.array([len(e.forces) for e in entries], dtype=np.int64)
     results = np.full((int(rows.sum()), max(RESULT_COLUMNS.values())), np.nan)
+    widths = np.array([e.forces.shape[1] for e in entries], dtype=np.int64)
+    forces = np.full((int(rows.sum()), int(widths.max(initial=6))), np.nan)
+    at = 0
+    for e in entries:
+        forces[at : at + len(e.forces), : e.forces.shape[1]] = e.forces
+        at += len(e.forces)
     at = 0
     for e in entries:
         results[at : at + len(e.forces), : e.results.shape[1]] = e.results
@@ -124,7 +158,8 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
         "kind": np.array([KINDS.index(e.kind) for e in entries], dtype=np.int64),
         "steps": np.array([e.steps for e in entries], dtype=np.int64),
         "rows": rows,
-        "forces": np.concatenate([e.forces for e in entries]) if entries else np.zeros((0, 6)),
+        "widths": widths,
+        "forces": forces,
         "results": results,
     }
     folder.parent.mkdir(parents=True, exist_ok=True)
@@ -134,6 +169,7 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
     manifest = {
         "version": STORE_VERSION,
         "fingerprint": model_code_fingerprint(),
+        "fingerprints": fingerprints(),
         "sha256": _sha256(tmp / RESULTS),
         "entries": {k: kinds.count(k) for k in KINDS},
         "runs": {k: int(rows[[i for i, x in enumerate(kinds) if x == k]].sum()) for k in KINDS},
@@ -166,11 +202,12 @@ def read_manifest(folder: Path) -> dict:
         raise StoreError(f"the store manifest {path} is not valid JSON ({err})") from err
     if not isinstance(manifest, dict) or any(f not in manifest for f in REQUIRED):
         raise StoreError(f"the store manifest {path} lacks fields: needs {', '.join(REQUIRED)}")
-    if manifest["version"] != STORE_VERSION:
+    if manifest["version"] not in READS:
         raise StoreError(
             f"the store {folder} has format version {manifest['version']!r}; this code reads "
-            f"version {STORE_VERSION}: regenerate it with `{REGENERATE}`"
+            f"versions {', '.join(map(str, READS))}: regenerate it with `{REGENERATE}`"
         )
+    manifest.setdefault("fingerprints", {"hexflex": manifest["fingerprint"]})
     return manifest
 
 
@@ -194,21 +231,20 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     with np.load(folder / RESULTS) as z:
         a = {k: z[k] for k in z.files}
     starts = np.r_[0, np.cumsum(a["rows"])]
+    widths = a.get("widths", np.full(len(a["keys"]), 6))
     entries = []
     for i, key in enumerate(a["keys"].tolist()):
         kind = KINDS[int(a["kind"][i])]
-        forces = a["forces"][starts[i] : starts[i + 1]]
+        forces = a["forces"][starts[i] : starts[i + 1], : int(widths[i])]
         width = RESULT_COLUMNS[kind]
         e = Entry(
             key, str(a["specs"][a["spec_index"][i]]), kind, int(a["steps"][i]), forces,
             a["results"][starts[i] : starts[i + 1], :width],
         )  # fmt: skip
-        if np.abs(forces).max(initial=0.0) > MAX_FORCE_N or not np.all(np.isfinite(e.results)):
-            raise StoreError(
-                f"store entry {key}: forces beyond ±{MAX_FORCE_N} N or results not finite: "
-                f"regenerate the store with `{REGENERATE}`"
-            )
-        expected = task_key(e.spec, e.kind, e.forces, e.steps, manifest["fingerprint"])
+        fingerprint = manifest["fingerprints"].get(family(e.spec), "")
+        if family(e.spec) == "hexflex" or fingerprint == fingerprints()[family(e.spec)]:
+            _check_entry(e)  # a layout's entry of older code: not seeded, its bounds unread
+        expected = task_key(e.spec, e.kind, e.forces, e.steps, fingerprint)
         if expected != key:
             raise StoreError(
                 f"store entry {key} does not match its own inputs (specification, forces or "
@@ -218,6 +254,31 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     return manifest, entries
 
 
+@lru_cache(maxsize=64)
+def _mechanism(spec: str) -> MechanismSpec:
+    return MechanismSpec.from_key(spec)
+
+
+def _check_entry(e: Entry) -> None:
+    """Refuse an entry whose loads lie beyond its model's bounds or whose results are not
+    finite."""
+    bad = not np.all(np.isfinite(e.results))
+    if family(e.spec) == "hexflex":
+        bad = bad or np.abs(e.forces).max(initial=0.0) > MAX_FORCE_N
+        bound = f"±{MAX_FORCE_N} N"
+    else:
+        try:
+            _mechanism(e.spec).check_design(e.forces)
+        except (ValueError, KeyError, TypeError):
+            bad = True
+        bound = "its load ports' bounds"
+    if bad:
+        raise StoreError(
+            f"store entry {e.key}: loads beyond {bound} or results not finite: regenerate the "
+            f"store with `{REGENERATE}`"
+        )
+
+
 def seed_cache(folder: Path, cache_dir: Path) -> int:
     """Write every entry of the store ``folder`` into the FE cache ``cache_dir`` (atomically,
     file by file); returns the number of tasks written.
@@ -225,8 +286,9 @@ def seed_cache(folder: Path, cache_dir: Path) -> int:
     Raises
     ------
     StoreError
-        As :func:`read_store`, and when the store was computed by other FE code than the
-        current (its fingerprint differs): one line, with the entry count and the command.
+        As :func:`read_store`, and when the store's HexFlex tasks were computed by other FE code
+        than the current (its fingerprint differs): one line, with the entry count and the
+        command. Entries of a compliant layout computed by other code are left out, not refused.
     """
     manifest, entries = read_store(folder)
     now = model_code_fingerprint()
@@ -236,6 +298,9 @@ def seed_cache(folder: Path, cache_dir: Path) -> int:
             f"(fingerprint {manifest['fingerprint']}, the current code's {now}): regenerate "
             f"them with `{REGENERATE}`"
         )
+    current = fingerprints()
+    entries = [e for e in entries if manifest["fingerprints"].get(family(e.spec)) ==
+               current[family(e.spec)]]  # fmt: skip
     cache_dir = Path(cache_dir)
     cache_dir.mkdir(parents=True, exist_ok=True)
     for e in entries:

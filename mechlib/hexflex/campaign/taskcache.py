@@ -18,17 +18,18 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.sources import model_modules
+from mechlib.hexflex.campaign.sources import TASK_MODULES, model_modules
 from mechlib.paths import fe_log_path
 
 #: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics
 CACHE_VERSION = 3
 
 
-@lru_cache(maxsize=1)
-def model_code_fingerprint() -> str:
+@lru_cache(maxsize=4)
+def model_code_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
     """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
-    mesh, FE model, solver, pose fit …).
+    mesh, FE model, solver, pose fit …) of the HexFlex's tasks, or of those a mechanism's
+    spec names (its ``TASK_MODULES``).
 
     Part of every cache key, so that a change to the mesher or the solver can never return
     results computed by the old code. A package whose ``__init__.py`` holds only its docstring
@@ -38,7 +39,7 @@ def model_code_fingerprint() -> str:
     import importlib.util
 
     h = hashlib.sha256()
-    for name in model_modules():
+    for name in model_modules(task_modules):
         source = Path(importlib.util.find_spec(name).origin).read_bytes()
         if not _defines_code(source):
             continue

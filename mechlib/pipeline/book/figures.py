@@ -205,6 +205,29 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "bent into S-shapes, one panel per load.",
         ),
     },
+    "parallelogram_fe": {
+        "pfe-04": (
+            "Our FE of the parallelogram flexure: the planform's quads at the page's element "
+            "size (the stage, a material region, shaded), the clamped faces (black), the face "
+            "the three loads act on (red) and the point the pose is reported at.",
+            "Top view of two long thin beams clamped at the left end and joined at the right by "
+            "a shaded block; a red line marks the block's left face between the beams.",
+        ),
+        "pfe-12": (
+            "The parallelogram flexure's stage displacement u_x/L, u_y/L and rotation φ against "
+            "the transverse load A_y at A_x = 0, B = 0: markers, the published 3-D FE sweep of Su "
+            "and Survey; solid, our non-linear FE; dashed, our stretchable elastica.",
+            "Three panels of curves against A_y, with square markers lying on a solid curve and "
+            "a dashed curve close to them.",
+        ),
+        "pfe-18": (
+            "Chapter 2's meta-model families on our FE of the parallelogram flexure: the largest "
+            "error on held-out non-linear FE runs over the benchmark's load box (worst pose "
+            "component, % of its range) against the training runs; dashed, the error budget.",
+            "Log-log curves of error against training runs, one per family, above a dashed "
+            "horizontal budget line.",
+        ),
+    },
     "beyond_5r": {
         "b5r-06": (
             "Poses selected by active calibration on the 5R, the 3-RRR and the 6-UPS, per leg "

@@ -1,0 +1,132 @@
+"""Our 3-D FE of the parallelogram beside the published one: loads, poses and rows in the
+benchmark's normalised units.
+
+Our FE (:mod:`.mechanism` through :mod:`mechlib.compliant`) takes loads in N and N·mm and
+returns the stage pose [µm, µrad] about the load point; the benchmark's rows are
+(A_x, A_y, B) and (u_x/L, u_y/L, φ). The published sweep's rows with A_y ≥ 0 are the computed
+ones (the others are mirror images), and their couple was +|B| whatever the printed sign
+(:func:`.published.applied_b`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mechlib.compliant.spec import MechanismSpec
+from mechlib.hexflex.campaign import executors
+from mechlib.hexflex.campaign.experiments import FailedRun, run_experiments, run_keeping_failures
+from mechlib.parallelogram import published as pub
+from mechlib.parallelogram.comparison import applied_loads, as_rows, fe_poses
+from mechlib.params import check_matrix
+
+
+def to_newton(loads: object) -> np.ndarray:
+    """Loads (n, 3) (A_x, A_y, B) as (F_x [N], F_y [N], M_z [N·mm])."""
+    arr = as_rows("loads", loads)
+    return np.column_stack(pub.loads_to_newton(arr[:, 0], arr[:, 1], arr[:, 2]))
+
+
+def from_newton(loads: object) -> np.ndarray:
+    """Loads (F_x [N], F_y [N], M_z [N·mm]), one row (3,) or rows (n, 3), as (A_x, A_y, B)."""
+    arr = np.asarray(loads, dtype=float)
+    rows = as_rows("loads", arr[None, :] if arr.ndim == 1 else arr)
+    out = np.column_stack(pub.newton_to_loads(rows[:, 0], rows[:, 1], rows[:, 2]))
+    return out[0] if arr.ndim == 1 else out
+
+
+def normalised(poses: object) -> np.ndarray:
+    """Stage poses (n, 6) [µm, µrad] as (u_x/L, u_y/L, φ [rad]) (n, 3)."""
+    p = check_matrix("poses", poses, shape=(None, 6))
+    return np.column_stack([p[:, 0] / 1e3 / pub.LENGTH_MM, p[:, 1] / 1e3 / pub.LENGTH_MM,
+                            p[:, 5] / 1e6])  # fmt: skip
+
+
+def in_mm(poses: object) -> np.ndarray:
+    """Stage poses (n, 6) [µm, µrad] as (x [mm], y [mm], φ [rad]): the mesh study's columns."""
+    p = check_matrix("poses", poses, shape=(None, 6))
+    return np.column_stack([p[:, 0] / 1e3, p[:, 1] / 1e3, p[:, 5] / 1e6])
+
+
+def computed_rows(lines: object, corners: bool = True) -> np.ndarray:
+    """The transcribed sweep rows the published FE computed (A_y ≥ 0) on the lines (A_x, B)
+    given (each of {-5, 0, 5} × {-3, 0, 3}, the printed B) and, if ``corners``, the grid's
+    corners with A_y ≥ 0; sorted by (A_x, B, A_y), each load applied once (of two rows printed
+    with B and -B, which the FE computed under the same couple, the first).
+
+    Returns
+    -------
+    sweep : ndarray (n, 6)
+        Rows in :data:`.published.SWEEP_COLUMNS` order.
+    loads : ndarray (n, 3)
+        The loads the FE applied (couple +|B|).
+    fe : ndarray (n, 3)
+        The FE's stage pose (u_x/L, u_y/L, rigid φ).
+    """
+    pairs = check_matrix("lines", lines, shape=(None, 2)) if np.size(lines) else np.zeros((0, 2))
+    rows = [pub.sweep_line(float(ax), float(b)) for ax, b in pairs]
+    if corners:
+        rows.append(pub.sweep_corners())
+    sweep = np.vstack(rows) if rows else np.zeros((0, 6))
+    sweep = sweep[sweep[:, 1] >= 0]
+    if len(sweep) == 0:
+        raise ValueError("lines and corners select no computed row: give a line or corners=True")
+    _, first = np.unique(applied_loads(sweep), axis=0, return_index=True)  # B, -B: one run
+    sweep = sweep[np.sort(first)]
+    sweep = sweep[np.lexsort((sweep[:, 1], sweep[:, 2], sweep[:, 0]))]
+    return sweep, applied_loads(sweep), fe_poses(sweep)
+
+
+def convergence_pct(values: object) -> np.ndarray:
+    """|each row − the last row| in % of the last row's magnitude, per column (the mesh study's
+    measure: the last row is the finest mesh)."""
+    v = np.asarray(values, dtype=float)
+    return 100.0 * np.abs(v - v[-1]) / np.abs(v[-1])
+
+
+def solve(
+    spec: MechanismSpec,
+    loads: object,
+    *,
+    steps: int,
+    workers: int = 1,
+    cache_dir: Path | None = None,
+) -> np.ndarray:
+    """Our non-linear FE's stage poses (u_x/L, u_y/L, φ) (n, 3) at normalised loads (n, 3):
+    a campaign of ``spec``'s model (``steps`` load steps a run, ``workers`` processes, the FE
+    cache ``cache_dir``), the pose the rigid registration of the stage's nodes."""
+    with executors.executor(workers) as pool:
+        poses = run_experiments(spec, to_newton(loads), kind="nonlinear", steps=steps,
+                                pose="rotvec", executor=pool, cache_dir=cache_dir,
+                                progress=False)  # fmt: skip
+    return normalised(poses)
+
+
+def solve_keeping(
+    spec: MechanismSpec,
+    loads: object,
+    *,
+    steps: int,
+    workers: int = 1,
+    cache_dir: Path | None = None,
+) -> tuple[np.ndarray, np.ndarray, list[FailedRun]]:
+    """:func:`solve` for a design whose statistics must leave a run that did not converge out,
+    and say so.
+
+    Returns
+    -------
+    loads : ndarray (m, 3)
+        The rows of ``loads`` that have a result, in order.
+    poses : ndarray (m, 3)
+        Their poses (u_x/L, u_y/L, φ).
+    failures : list of FailedRun
+        The other rows (index into ``loads``, loads in N and N·mm, last residual, error).
+    """
+    arr = as_rows("loads", loads)
+    with executors.executor(workers) as pool:
+        index, poses, failures = run_keeping_failures(
+            spec, to_newton(arr), kind="nonlinear", steps=steps, pose="rotvec", executor=pool,
+            cache_dir=cache_dir, progress=False,
+        )  # fmt: skip
+    return arr[index], normalised(poses), failures
