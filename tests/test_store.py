@@ -82,9 +82,7 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
     # a malformed manifest, an unknown version, no store
     m = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**m, "version": 99}))
-    with pytest.raises(
-        st.StoreError, match="format version 99; this code reads versions 2, 3"
-    ):
+    with pytest.raises(st.StoreError, match="format version 99; this code reads versions 2, 3"):
         st.read_store(folder)
     (folder / st.MANIFEST).write_text("{not json")
     with pytest.raises(st.StoreError, match="not valid JSON"):
