@@ -63,8 +63,8 @@ def parallelogram_fe_claims() -> list[ClaimSpec]:
             "ours.parallelogram_fe.sweep_within",
             cat.SOURCE_OURS,
             where,
-            f"our non-linear FE reproduces the published non-linear 3-D FE sweep within "
-            f"{SWEEP_AGREEMENT_PCT:g} % of each pose component's range",
+            f"our non-linear FE on the page's mesh reproduces the published non-linear 3-D FE "
+            f"sweep within {SWEEP_AGREEMENT_PCT:g} % of each pose component's range",
             PF,
             (
                 at_most(

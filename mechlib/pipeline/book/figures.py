@@ -213,14 +213,15 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "Top view of two long thin beams clamped at the left end and joined at the right by "
             "a shaded block; a red line marks the block's left face between the beams.",
         ),
-        "pfe-12": (
+        "pfe-14": (
             "The parallelogram flexure's stage displacement u_x/L, u_y/L and rotation φ against "
-            "the transverse load A_y at A_x = 0, B = 0: markers, the published 3-D FE sweep of Su "
-            "and Survey; solid, our non-linear FE; dashed, our stretchable elastica.",
-            "Three panels of curves against A_y, with square markers lying on a solid curve and "
-            "a dashed curve close to them.",
+            "the transverse load A_y on the first line of the parameter sweep_lines (by default "
+            "A_x = 0, B = 0): markers, the published 3-D FE sweep of Su and Survey; solid, our "
+            "non-linear FE; dashed, our stretchable elastica.",
+            "Three panels of curves against A_y, each with square markers, a solid curve and a "
+            "dashed curve.",
         ),
-        "pfe-18": (
+        "pfe-20": (
             "Chapter 2's meta-model families on our FE of the parallelogram flexure: the largest "
             "error on held-out non-linear FE runs over the benchmark's load box (worst pose "
             "component, % of its range) against the training runs; dashed, the error budget.",
