@@ -102,17 +102,3 @@ def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> 
         [c.file for c in one] == [c.file for c in two] == ["k0.npy", "k1.npy", "k2.npy", "k3.npy"]
     )
     assert [c.agrees for c in two] == [True, True, True, False]
-
-
-def test_a_sample_draws_its_tasks_from_a_few_models() -> None:
-    # 50 models of 10 tasks: 20 draws take 20 distinct tasks of at most MAX_MODELS models
-    entries = [{"file": f"{m:02d}-{t}.npy", "kind": "nonlinear", "spec": f'{{"m": {m}}}'}
-               for m in range(50) for t in range(10)]  # fmt: skip
-    for seed in range(5):
-        picked = cc.sample(entries, {"nonlinear": 20}, seed=seed)
-        assert len({e["file"] for e in picked}) == 20
-        assert len({e["spec"] for e in picked}) == cc.MAX_MODELS
-    # a model with fewer tasks than the draws need: the rest come from the other models
-    few = [{"file": f"{m}-{t}.npy", "kind": "nonlinear", "spec": str(m)} for m in range(9)
-           for t in range(2)]  # fmt: skip
-    assert len(cc.sample(few, {"nonlinear": 18})) == 18

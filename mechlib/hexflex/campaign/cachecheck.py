@@ -90,10 +90,6 @@ def spec_from_key(text: str) -> ModelSpec | MechanismSpec:
     return ModelSpec(geometry=geometry, **fields)
 
 
-#: most models a sample draws from per kind (see :func:`sample`)
-MAX_MODELS = 8
-
-
 def _one_per_family(specs: list[str], order: np.ndarray) -> list[int]:
     """``order`` (indices into ``specs``) with the first model of each mechanism family moved
     to the front, so that a sample smaller than the number of models still draws from both the
@@ -107,12 +103,9 @@ def _one_per_family(specs: list[str], order: np.ndarray) -> list[int]:
 
 def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEED) -> list[dict]:
     """A seeded sample of logged tasks: ``per_kind[kind]`` of each kind (all if fewer), in log
-    order, spread over models: one task of every model (``spec``) first — of at most
-    ``MAX_MODELS`` models, drawn at random when there are more, one of each mechanism family
-    (the HexFlex, a compliant layout) among them —, the rest drawn from those models' other
-    tasks (then, if they hold too few, from all others). A draw costs a model build per model
-    (as much as a run or more on the chapters' finest meshes), so drawing many tasks of a few
-    models checks as many results for less; which models are drawn changes with the seed.
+    order, spread over models: one task of every model (``spec``) first — of as many models,
+    drawn at random, when there are more models than draws, one of each mechanism family
+    (the HexFlex, a compliant layout) among them —, the rest drawn from all others.
 
     Returns
     -------
@@ -133,17 +126,15 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
         for i in idx:
             groups.setdefault(entries[i].get("spec", ""), []).append(i)
         order = _one_per_family(list(groups), rng.permutation(len(groups)))
-        order = order[: min(n, len(groups), MAX_MODELS)]
+        order = order[: min(n, len(groups))]
         members = list(groups.values())
         picked = [int(rng.choice(members[g])) for g in sorted(order)]
         taken = set(picked)
-        near = [i for g in sorted(order) for i in members[g] if i not in taken]
-        far = [i for i in idx if i not in taken and i not in set(near)]
-        for pool in (near, far):
-            extra = min(n - len(picked), len(pool))
-            if extra:
-                picked += rng.choice(pool, size=extra, replace=False).tolist()
-        chosen.extend(picked)
+        rest = [i for i in idx if i not in taken]
+        extra = min(n - len(picked), len(rest))
+        chosen.extend(
+            picked + (rng.choice(rest, size=extra, replace=False).tolist() if extra else [])
+        )
     return [entries[i] for i in sorted(chosen)]
 
 
