@@ -49,24 +49,34 @@ def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> No
     assert ex.run_experiments(other, d, cache_dir=tmp_path, progress=False).any()
 
 
-def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
-    import dataclasses
+def _modules_a_task_loads(statements: str) -> set[str]:
+    """The mechlib modules loaded by a fresh Python process that imports the runner as ``ex``
+    and runs ``statements`` (a task: imports inside functions count too)."""
     import subprocess
     import sys
 
-    # every mechlib module that a task's code loads (run one: imports inside functions too)
     code = (
         "import sys, numpy as np; from mechlib.hexflex.campaign import experiments as ex; "
-        "from mechlib.hexflex.geometry import HexFlexGeometry; "
-        f"spec = ex.ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
-        "mesh_size=1.0); "
-        "ex._task(spec, 'nonlinear', np.full((1, 6), 0.1), 1); "
-        "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
+        + statements
+        + "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
         "and getattr(sys.modules[m], '__file__', None)))"
     )
     root = Path(__file__).resolve().parents[1]
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root
+    )
+    return set(out.stdout.split())
+
+
+def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
+    import dataclasses
+
+    # every mechlib module that a task's code loads (run one: imports inside functions too)
+    loaded_all = _modules_a_task_loads(
+        "from mechlib.hexflex.geometry import HexFlexGeometry; "
+        f"spec = ex.ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
+        "mesh_size=1.0); "
+        "ex._task(spec, 'nonlinear', np.full((1, 6), 0.1), 1); "
     )
     # the runner, where it runs tasks, its progress reports, its cache key and its cache's
     # folders define no result
@@ -82,8 +92,8 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
     }
     # the runner also takes a compliant layout's specification: that code is in the layout's
     # tasks' key (the test below), not the HexFlex's
-    runner |= {m for m in out.stdout.split() if m.startswith("mechlib.compliant")}
-    loaded = set(out.stdout.split()) - runner
+    runner |= {m for m in loaded_all if m.startswith("mechlib.compliant")}
+    loaded = loaded_all - runner
     keyed = set(model_modules())
     assert {"mechlib.hexflex.fe.factor", "mechlib.hexflex.fe.svk_tangent"} <= keyed
     # the runner's own code defines no result
@@ -92,21 +102,12 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
 
 
 def test_every_module_of_a_layouts_task_is_in_its_cache_key() -> None:
-    import subprocess
-    import sys
 
-    code = (
-        "import sys, numpy as np; from mechlib.hexflex.campaign import experiments as ex; "
+    loaded_all = _modules_a_task_loads(
         "from mechlib.compliant.spec import MechanismSpec; "
         "from mechlib.parallelogram.mechanism import layout; "
         "spec = MechanismSpec(layout(stage_young=5e6), 10.0, 1); "
         "ex._task(spec, 'nonlinear', np.array([[0.0, 1000.0, 0.0]]), 1); "
-        "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
-        "and getattr(sys.modules[m], '__file__', None)))"
-    )
-    root = Path(__file__).resolve().parents[1]
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=root
     )
     from mechlib.compliant.spec import MechanismSpec
 
@@ -127,7 +128,7 @@ def test_every_module_of_a_layouts_task_is_in_its_cache_key() -> None:
         "mechlib.hexflex.fe.lean",  # the runner's HexFlex specification imports them
         "mechlib.compliant",  # the package: its docstring only
     }
-    loaded = set(out.stdout.split()) - runner
+    loaded = loaded_all - runner
     assert {"mechlib.compliant.solver", "mechlib.compliant.problem"} <= keyed
     assert loaded <= keyed, sorted(loaded - keyed)
 
