@@ -171,8 +171,9 @@ book-checks: $(STAMP)
 	@if $(PY) -c 'import sys; from mechlib.pipeline.book.browser import find_browser; sys.exit(not find_browser())'; \
 	then $(MAKE) --no-print-directory check-browser; \
 	else echo "check-browser skipped: no Chromium on this machine (apt-get install chromium)"; fi
+	@# the PDF, then its check (one after the other whatever job slots the caller has)
 	@if $(PY) -m mechlib.pipeline.pdf tools; \
-	then $(MAKE) --no-print-directory pdf check-pdf; \
+	then $(MAKE) --no-print-directory pdf && $(MAKE) --no-print-directory check-pdf; \
 	else echo "pdf skipped: no Chromium or poppler-utils (apt-get install chromium poppler-utils)"; fi
 
 determinism-check: $(STAMP)

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver
-from mechlib.hexflex.fe.svk_tangent import SVKTangent
+from mechlib.fe.nonlinear import NonlinearSolver
+from mechlib.fe.svk_tangent import SVKTangent
 from mechlib.hexflex.studies.cantilever import ELASTICA_TOL, Cantilever, box_hexahedra
 from mechlib.hexflex.studies.elastica import MAX_ALPHA, elastica_tip
 

@@ -52,8 +52,8 @@ def test_relative_change_is_per_column_and_refuses_a_zero_reference():
 def test_linear_poses_at_the_models_quadrature_are_the_linear_models():
     from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
+    from mechlib.fe.nonlinear import NonlinearSolver
     from mechlib.hexflex.fe.model import HexFlexModel
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
     from mechlib.hexflex.studies.departure import linear_poses
 
     model = HexFlexModel(SMALL, element="q2", mesh_size=1.0)

@@ -5,8 +5,8 @@ import pytest
 import scipy.sparse as sp
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.fe import nonlinear
-from mechlib.hexflex.fe.factor import PatternCholesky
+from mechlib.fe import nonlinear
+from mechlib.fe.factor import PatternCholesky
 from mechlib.hexflex.fe.model import HexFlexModel
 
 

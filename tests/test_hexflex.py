@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 
 from mechlib import published as pub
+from mechlib.fe import nonlinear, sfepy_tl
+from mechlib.fe.pose import fit_operator
 from mechlib.hexflex import checks
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import identify as ident
 from mechlib.hexflex.fe import mesh as ms
-from mechlib.hexflex.fe import nonlinear, sfepy_tl
 from mechlib.hexflex.fe.model import HexFlexModel
-from mechlib.hexflex.fe.pose import fit_operator
 from mechlib.hexflex.studies import beamcheck, convergence
 
 SMALL = geo.HexFlexGeometry(

@@ -1,4 +1,4 @@
-"""Stage pose at finite rotation (mechlib.hexflex.fe.finite_pose) against closed-form rigid motions.
+"""Stage pose at finite rotation (mechlib.fe.finite_pose) against closed-form rigid motions.
 
 Point sets stand in for the stage's nodes: a planar one (shell mesh, z = 0), the same planar set
 on two layers z = ±h (Q2 vertices) and an anisotropic solid one; all have their centroid away
@@ -8,8 +8,8 @@ from the stage centre ``C`` so that the translation of the centre is tested, not
 import numpy as np
 import pytest
 
-from mechlib.hexflex.fe import finite_pose as fp
-from mechlib.hexflex.fe.pose import POSE_SCALE, fit_operator
+from mechlib.fe import finite_pose as fp
+from mechlib.fe.pose import POSE_SCALE, fit_operator
 
 SEED = 20100101
 N_POINTS = 40

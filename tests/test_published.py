@@ -49,7 +49,7 @@ def test_the_claimed_main_factors_are_the_non_zero_pattern_of_eq8() -> None:
 
 
 def test_one_spelling_of_the_response_labels_and_units() -> None:
-    from mechlib.hexflex.fe import pose
+    from mechlib.fe import pose
 
     # one spelling: the pose module keeps no labels of its own
     assert not hasattr(pose, "POSE_LABELS") and not hasattr(pose, "POSE_UNITS")

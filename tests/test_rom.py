@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
+from mechlib.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.model import HexFlexModel
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.rom import basis as rb
 from mechlib.hexflex.rom import ecsw, indicators
 from mechlib.hexflex.rom import model as rm

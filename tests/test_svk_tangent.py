@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.fe import sfepy_tl
-from mechlib.hexflex.fe.factor import PatternCholesky
+from mechlib.fe import sfepy_tl
+from mechlib.fe.factor import PatternCholesky
+from mechlib.fe.svk_tangent import SVKTangent
 from mechlib.hexflex.fe.model import HexFlexModel
-from mechlib.hexflex.fe.svk_tangent import SVKTangent
 
 #: Largest relative difference (max |ΔK| / max |K|) taken for "the same matrix": round-off.
 SAME = 1e-12
@@ -157,7 +157,7 @@ def test_tangent_is_bit_identical_between_calls_and_processes(
         "import sys, hashlib; sys.path.insert(0, 'tests'); import numpy as np; "
         "from test_hexflex import SMALL; from test_svk_tangent import TILT; "
         "from mechlib.hexflex.fe.model import HexFlexModel; "
-        "from mechlib.hexflex.fe.svk_tangent import SVKTangent; "
+        "from mechlib.fe.svk_tangent import SVKTangent; "
         "m = HexFlexModel(SMALL, element='q2', mesh_size=1.0); "
         "k = SVKTangent(m).matrix(m.solve_reduced(TILT)[:, 0]); "
         "print(hashlib.sha256(k.data.tobytes()).hexdigest())"

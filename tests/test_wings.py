@@ -159,12 +159,21 @@ def test_each_hexflex_room_imports_only_the_rooms_below_it() -> None:
     assert {_room(m) for m in GRAPH} >= set(HEXFLEX_ROOMS)  # every room exists
 
 
-def test_the_fe_model_imports_only_geometry_and_params_from_mechlib() -> None:
+def test_the_fe_model_imports_only_geometry_params_and_the_fe_core_from_mechlib() -> None:
     outside = {
         i
         for m, imports in GRAPH.items()
         if _in(m, "mechlib.hexflex.fe")
         for i in imports
-        if not _in(i, "mechlib.hexflex.fe")
+        if not _in(i, "mechlib.hexflex.fe") and not _in(i, "mechlib.fe")
     }
-    assert outside <= {"mechlib.hexflex.geometry", "mechlib.params"}
+    assert outside <= {"mechlib.hexflex.geometry", "mechlib.params", "mechlib.blas"}
+
+
+def test_the_fe_core_and_the_compliant_layouts_import_no_hexflex() -> None:
+    # the solid FE core imports no mechanism (each mechanism's fingerprint holds the core and
+    # its own model only); a compliant layout's model is the core's other instance
+    core = {i for m, imports in GRAPH.items() if _in(m, "mechlib.fe") for i in imports}
+    assert {i for i in core if not _in(i, "mechlib.fe")} <= {"mechlib.params", "mechlib.blas"}
+    layouts = {i for m, imports in GRAPH.items() if _in(m, "mechlib.compliant") for i in imports}
+    assert not {i for i in layouts if _in(i, "mechlib.hexflex")}

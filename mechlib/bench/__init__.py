@@ -11,9 +11,9 @@
   pivoting that the model uses, against SciPy's default column ordering (COLAMD).
 - The non-linear solve (issue 18's options, :mod:`mechlib.bench.nonlinear`), on the first
   validation runs of the DOE chapter's model: Newton with SfePy's tangent and SuperLU (the solver
-  before issue 18), Newton with the batched-BLAS tangent (:mod:`mechlib.hexflex.fe.svk_tangent`),
+  before issue 18), Newton with the batched-BLAS tangent (:mod:`mechlib.fe.svk_tangent`),
   modified Newton with SuperLU and modified Newton with CHOLMOD's Cholesky (the default,
-  :mod:`mechlib.hexflex.fe.factor`), each timed on the same runs, with the largest relative pose
+  :mod:`mechlib.fe.factor`), each timed on the same runs, with the largest relative pose
   difference to the first; the cost of one tangent (SfePy's, batched), one factorisation (LU,
   Cholesky), one residual and one back-substitution; and the Newton–Krylov alternative: GMRES
   iterations, preconditioned by the factorised linear stiffness (a whole solve on the first run:
@@ -120,7 +120,7 @@ def factorisation_orderings() -> dict[str, float]:
     """Time SuperLU with the model's ordering and with SciPy's default on one stiffness."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.fe.factor import factorise
+    from mechlib.fe.factor import factorise
     from mechlib.hexflex.fe.model import HexFlexModel
 
     matrix = HexFlexModel(bench_geometry()).assembled_stiffness().tocsc()
@@ -157,7 +157,7 @@ def main(argv: list[str] | None = None) -> int:
     import argparse
 
     from mechlib.bench import nonlinear as nlb
-    from mechlib.hexflex.fe.nonlinear import NEWTON_TOL
+    from mechlib.fe.nonlinear import NEWTON_TOL
 
     parser = argparse.ArgumentParser(prog="python -m mechlib.bench", description=__doc__)
     parser.add_argument(

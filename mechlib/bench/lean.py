@@ -28,7 +28,7 @@ def _runs(model, cases: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray,
     (n,) of ``cases`` (n, 6) [N] on ``model``, one BLAS thread."""
     from threadpoolctl import threadpool_limits
 
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+    from mechlib.fe.nonlinear import NonlinearSolver
 
     solver = NonlinearSolver(model)
     poses, seconds, facts = [], [], []
@@ -49,7 +49,7 @@ def lean_comparison(n_runs: int = N_RUNS) -> dict[str, object]:
     identification) and ``fit_s`` [s], DOFs, worst pose and departure differences [%] on the
     runs and on the sweep, Eq 8 misfits [%], mean seconds and factorisations per run of each
     model, and ``passed`` (both criteria met on runs and sweep). A run that does not converge
-    raises :class:`mechlib.hexflex.fe.nonlinear.ConvergenceError`, naming it."""
+    raises :class:`mechlib.fe.nonlinear.ConvergenceError`, naming it."""
     import gc
 
     from mechlib import published as pub

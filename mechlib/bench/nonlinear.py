@@ -41,8 +41,8 @@ def _fastest(call) -> float:
 def nonlinear_options() -> dict[str, float]:
     """Time the non-linear solvers on the same validation runs, and their building blocks."""
 
-    from mechlib.hexflex.fe.factor import PatternCholesky, factorise
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+    from mechlib.fe.factor import PatternCholesky, factorise
+    from mechlib.fe.nonlinear import NonlinearSolver
 
     spec, _ = _chapter_spec()
     model = spec.build()
@@ -125,7 +125,7 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
     GMRES iterations) and ``residual`` (final relative residual)."""
     import scipy.sparse.linalg as sla
 
-    from mechlib.hexflex.fe.nonlinear import NEWTON_TOL
+    from mechlib.fe.nonlinear import NEWTON_TOL
 
     model = solver.model
     load = model.load_vectors() @ forces

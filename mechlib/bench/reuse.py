@@ -80,7 +80,7 @@ def chord_with(solver, solve, u: np.ndarray, target: np.ndarray, tol: float) -> 
         The corrections used (at most ``REUSE_MAX_CORRECTIONS``), and whether the iteration
         converged to ``tol`` (False also when an element inverted).
     """
-    from mechlib.hexflex.fe.anderson import Anderson
+    from mechlib.fe.anderson import Anderson
 
     scale = np.linalg.norm(target)
     res = solver.residual(u, target)
@@ -112,7 +112,7 @@ def tangent_reuse() -> dict[str, float]:
         percentile of :func:`nearest_neighbour_distances` [N].
     """
     from mechlib.bench.nonlinear import _chapter_spec
-    from mechlib.hexflex.fe.nonlinear import NEWTON_TOL, NonlinearSolver
+    from mechlib.fe.nonlinear import NEWTON_TOL, NonlinearSolver
 
     spec, _ = _chapter_spec()
     solver = NonlinearSolver(spec.build())

@@ -6,8 +6,8 @@ campaigns and FE cache take as they take the HexFlex's (:mod:`.model`, :mod:`.so
 :mod:`.spec`).
 
 Imports: ``layout`` imports only :mod:`mechlib.params`; ``planform`` imports ``layout``;
-``problem`` imports both and the HexFlex FE's SfePy helpers and pose fit; ``model`` imports
-``problem`` and the HexFlex FE's factorisation; ``solver`` (the non-linear solve with material
-regions) imports ``model`` and the HexFlex's non-linear solver; ``spec`` imports both. Nothing
-here imports a campaign, a study or the build wing.
+``problem`` imports both and the solid FE core's SfePy helpers and pose fit (:mod:`mechlib.fe`);
+``model`` imports ``problem`` and the core's factorisation; ``solver`` (the core's non-linear
+solve with material regions) imports ``model``; ``spec`` imports both. Nothing here imports the
+HexFlex, a campaign, a study or the build wing.
 """

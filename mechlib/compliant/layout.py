@@ -278,21 +278,28 @@ def check_layout(layout: Layout) -> None:
         raise ValueError("clamp must give at least one boundary segment, got none")
     for k, seg in enumerate(layout.clamp):
         s = _check_segment(f"clamp segment {k}", seg)
-        on = _touching(layout, s)
-        if not on:
-            part, dist = _nearest_edge(layout, s)
-            raise ValueError(
-                f"clamp segment {k} {s.tolist()} lies on no face of the part: it has no faces to "
-                f"clamp (the nearest edge, of part {part!r}, is {dist:.4g} mm from its midpoint)"
-            )
-        if len(on) > 1:
-            raise ValueError(
-                f"clamp segment {k} lies between parts {sorted(on)}: not on the outside"
-            )
-        if set(on) & set(layout.stage):
-            raise ValueError(f"clamp segment {k} is on the stage (part {sorted(on)[0]!r})")
+        off = f"{s.tolist()} lies on no face of the part: it has no faces to clamp"
+        part, _ = _outside_part(layout, s, f"clamp segment {k}", off)
+        if part in layout.stage:
+            raise ValueError(f"clamp segment {k} is on the stage (part {part!r})")
     _check_loads(layout)
     check_int("loads", len(layout.loads), low=1, high=12)
+
+
+def _outside_part(layout: Layout, s: np.ndarray, what: str, off: str) -> tuple[str, float]:
+    """The one part whose outside boundary holds segment ``s`` and the length of ``s`` on it
+    [mm]; a segment on no face (``what``, ``off`` and the nearest edge named) or between two
+    parts is refused."""
+    on = _touching(layout, s)
+    if not on:
+        part, dist = _nearest_edge(layout, s)
+        raise ValueError(
+            f"{what} {off} (the nearest edge, of part {part!r}, is {dist:.4g} mm from its midpoint)"
+        )
+    if len(on) > 1:
+        raise ValueError(f"{what} lies between parts {sorted(on)}: not on the outside")
+    ((part, covered),) = on.items()
+    return part, covered
 
 
 def _check_loads(layout: Layout) -> None:
@@ -310,19 +317,9 @@ def _check_loads(layout: Layout) -> None:
             )
         if not isinstance(ld.bound, (int, float)) or not ld.bound > 0:  # inf: no bound
             raise ValueError(f"load {ld.name!r} bound must be > 0 {ld.unit}, got {ld.bound!r}")
-        on = _touching(layout, s)
         length = float(np.linalg.norm(s[1] - s[0]))
-        if not on:
-            part, dist = _nearest_edge(layout, s)
-            raise ValueError(
-                f"load {ld.name!r} is off the part: its segment {s.tolist()} lies on no face "
-                f"(the nearest edge, of part {part!r}, is {dist:.4g} mm from its midpoint)"
-            )
-        if len(on) > 1:
-            raise ValueError(
-                f"load {ld.name!r} lies between parts {sorted(on)}: not on the outside"
-            )
-        ((part, covered),) = on.items()
+        off = f"is off the part: its segment {s.tolist()} lies on no face"
+        part, covered = _outside_part(layout, s, f"load {ld.name!r}", off)
         if part not in layout.stage:
             raise ValueError(
                 f"load {ld.name!r} is on part {part!r}, not on the stage {layout.stage}"

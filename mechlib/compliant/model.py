@@ -3,7 +3,7 @@
 :class:`MechanismModel` answers what the HexFlex's model answers, for any :class:`Layout`: load
 vectors of unit loads at its ports, reduced displacements by back-substitution, the stage pose
 [µm, µrad] about the origin, and the compliance (pose per unit load, 6 × k). It offers the
-interface that :class:`mechlib.hexflex.fe.nonlinear.NonlinearSolver` and the finite-rotation
+interface that :class:`mechlib.fe.nonlinear.NonlinearSolver` and the finite-rotation
 pose read (``fe``, ``young``, ``poisson``, ``element``, ``body_factor``, ``load_vectors``,
 ``back_substitute``, ``pose_of``, ``stage_motion``, ``check_forces``), so the same
 total-Lagrangian Saint Venant–Kirchhoff solve runs on it. A layout with material regions is
@@ -17,13 +17,13 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.compliant.layout import Layout, check_load_design
 from mechlib.compliant.planform import Planform, mesh_planform
 from mechlib.compliant.problem import MechanismProblem, build
-from mechlib.hexflex.fe.factor import factorise
-from mechlib.hexflex.fe.problem import assemble_stiffness
+from mechlib.fe.factor import factorise
+from mechlib.fe.sfepy_base import assemble_stiffness
 from mechlib.params import check_int
 
 
@@ -101,7 +101,7 @@ class MechanismModel:
     def back_substitute(self, rhs: np.ndarray) -> np.ndarray:
         """Solve ``K x = rhs`` with the stored factorisation, BLAS on one thread (the same bits
         in any process)."""
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             return self._lu.solve(np.ascontiguousarray(rhs))
 
     def solve_reduced(self, forces: object) -> np.ndarray:
@@ -110,7 +110,7 @@ class MechanismModel:
 
     def pose_of(self, reduced: np.ndarray) -> np.ndarray:
         """Stage pose(s) [µm, µrad] about the origin of reduced displacement(s): (6,) or (6, n)."""
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             return self.fe.fit @ reduced[self.fe.stage_idx]
 
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

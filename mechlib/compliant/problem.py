@@ -17,8 +17,8 @@ import numpy as np
 
 from mechlib.compliant.layout import TOL, Layout
 from mechlib.compliant.planform import Planform, extrude
-from mechlib.hexflex.fe.pose import fit_operator
-from mechlib.hexflex.fe.problem import QUAD_ORDER, integral, quiet_sfepy
+from mechlib.fe.pose import fit_operator
+from mechlib.fe.sfepy_base import QUAD_ORDER, integral, quiet_sfepy
 
 
 @dataclass

@@ -1,7 +1,7 @@
 """The geometrically non-linear solve of a mechanism with material regions.
 
 :class:`MechanismSolver` is the HexFlex's total-Lagrangian Saint Venant–Kirchhoff solver
-(:class:`mechlib.hexflex.fe.nonlinear.NonlinearSolver`, batched tangent, Newton or modified
+(:class:`mechlib.fe.nonlinear.NonlinearSolver`, batched tangent, Newton or modified
 Newton) on a :class:`~mechlib.compliant.model.MechanismModel`, with each element's quadrature
 weights multiplied by its part's Young's modulus over the base one. With one Poisson's ratio
 that is exact: Lamé's λ and μ are both proportional to E, so an element's internal force and
@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from mechlib.compliant.model import MechanismModel
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver
-from mechlib.hexflex.fe.problem import QUAD_ORDER
+from mechlib.fe.nonlinear import NonlinearSolver
+from mechlib.fe.sfepy_base import QUAD_ORDER
 
 
 class _OneModulus:

@@ -9,7 +9,7 @@ beyond it. :func:`store_tables` lays them out as CSV texts:
   HexFlex on its default and lean meshes, the mesh-convergence and family geometries;
 * ``runs/linear_runs.csv``: every linear run (model id, forces [N], pose [µm, µrad]);
 * ``runs/nonlinear_runs.csv``: every non-linear run (model id, load steps, forces, the pose in
-  the three conventions of :mod:`mechlib.hexflex.fe.finite_pose`, the solve statistics).
+  the three conventions of :mod:`mechlib.fe.finite_pose`, the solve statistics).
 
 A run that did not converge has no result, so it is not in the store; the records list those.
 """

@@ -17,7 +17,7 @@ from mechlib.params import check_float, check_int
 
 #: significant digits of a table cell
 DIGITS = 4
-#: Reader names of the stage-pose conventions of :mod:`mechlib.hexflex.fe.finite_pose`.
+#: Reader names of the stage-pose conventions of :mod:`mechlib.fe.finite_pose`.
 POSE_CONVENTION_LABELS: dict[str, str] = {
     "small": "small-rotation fit",
     "rotvec": "rotation vector",

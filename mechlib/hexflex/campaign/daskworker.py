@@ -62,7 +62,5 @@ def dask_setup(worker: object = None) -> None:
     """Preload hook (``--preload mechlib.hexflex.campaign.daskworker``): the FE stack imported
     before the first task, and :func:`restore_malloc`."""
     # SfePy and the FE models, imported before the first task
-    import mechlib.hexflex.fe.lean
-    import mechlib.hexflex.fe.nonlinear  # noqa: F401
 
     restore_malloc()

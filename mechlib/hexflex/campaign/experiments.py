@@ -24,6 +24,9 @@ from threadpoolctl import threadpool_limits
 
 from mechlib.compliant.model import MechanismModel
 from mechlib.compliant.spec import MechanismSpec
+from mechlib.fe.finite_pose import CONVENTIONS, finite_poses
+from mechlib.fe.nonlinear import NonlinearSolver
+from mechlib.fe.sfepy_base import QUAD_ORDER
 from mechlib.hexflex.campaign.executors import InProcessExecutor, worker_count
 from mechlib.hexflex.campaign.spec import MESHES as MESHES  # re-exported: notebooks check it
 from mechlib.hexflex.campaign.spec import ModelSpec
@@ -35,22 +38,19 @@ from mechlib.hexflex.campaign.taskcache import (
     model_code_fingerprint,
     task_key,
 )
-from mechlib.hexflex.fe.finite_pose import CONVENTIONS, finite_poses
 from mechlib.hexflex.fe.model import HexFlexModel
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver
-from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.params import check_choice, check_int
 from mechlib.progress import Progress
 
 #: task kinds: linear runs, non-linear runs, and the model's size (its free DOFs, one row of
 #: zero forces), cached like the runs so that a build reading the cache builds no model for it
 KINDS: tuple[str, ...] = ("linear", "nonlinear", "size")
-#: Pose conventions a non-linear run returns (:mod:`mechlib.hexflex.fe.finite_pose`): the
+#: Pose conventions a non-linear run returns (:mod:`mechlib.fe.finite_pose`): the
 #: small-rotation fit of the stage nodes (the linear model's and the tables' pose), and the exact
 #: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
 #: the first only (a linear displacement field is no finite rotation).
 POSE_CONVENTIONS: tuple[str, ...] = CONVENTIONS
-#: what a non-linear run reports after its poses (:class:`~mechlib.hexflex.fe.nonlinear.
+#: what a non-linear run reports after its poses (:class:`~mechlib.fe.nonlinear.
 #: SolveStats`, summed over its load steps): corrections (back-substitutions), tangent
 #: factorisations, load steps the modified method gave up on (solved again by Newton), and the
 #: final ‖residual‖ / ‖load‖. A run that does not converge raises, so a stored run converged.

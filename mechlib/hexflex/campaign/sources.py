@@ -15,8 +15,8 @@ from pathlib import Path
 TASK_MODULES: tuple[str, ...] = (
     "mechlib.hexflex.fe.model",
     "mechlib.hexflex.fe.lean",
-    "mechlib.hexflex.fe.nonlinear",
-    "mechlib.hexflex.fe.finite_pose",
+    "mechlib.fe.nonlinear",
+    "mechlib.fe.finite_pose",
 )
 
 

@@ -10,10 +10,10 @@ from typing import ClassVar
 
 import numpy as np
 
+from mechlib.fe.sfepy_base import QUAD_ORDER
 from mechlib.hexflex.campaign.sources import TASK_MODULES
 from mechlib.hexflex.fe.lean import lean_model
 from mechlib.hexflex.fe.model import HexFlexModel, check_forces
-from mechlib.hexflex.fe.problem import QUAD_ORDER
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_choice, check_float, check_int
 
@@ -31,7 +31,7 @@ class ModelSpec:
     mesh_size: float | None = None
     element: str = "q2"
     #: quadrature order of the non-linear solve (:class:`NonlinearSolver`'s ``quad_order``); the
-    #: linear model always uses :data:`mechlib.hexflex.fe.problem.QUAD_ORDER`
+    #: linear model always uses :data:`mechlib.fe.sfepy_base.QUAD_ORDER`
     quad_order: int = QUAD_ORDER
     #: the mesh recipe: ``"default"`` (:class:`HexFlexModel`, flexure elements ``mesh_size``) or
     #: ``"lean"`` (:func:`mechlib.hexflex.fe.lean.lean_model`, Q2 only: its own element sizes, its

@@ -1,7 +1,7 @@
 """The lean HexFlex FE model: a coarser mesh with the default model's pose definition.
 
 The stage pose of :class:`~mechlib.hexflex.fe.model.HexFlexModel` is an unweighted least-squares
-rigid fit over the stage's mesh vertices (:func:`mechlib.hexflex.fe.pose.fit_operator`). The
+rigid fit over the stage's mesh vertices (:func:`mechlib.fe.pose.fit_operator`). The
 stage is nearly rigid but not rigid (it bends under the out-of-plane loads), so the fitted pose
 is a vertex-density-weighted average of its motion: coarsening the stage's mesh changes the
 quantity of interest itself (z←T1D2 and θx←T1D2 by 1–5 % at fixed dimensions), not only its
@@ -30,8 +30,9 @@ from types import MappingProxyType
 
 import numpy as np
 import scipy.sparse as sp
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
+from mechlib.fe.pose import fit_operator
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.fe import mesh as ms
 from mechlib.hexflex.fe.model import (
@@ -40,7 +41,6 @@ from mechlib.hexflex.fe.model import (
     HexFlexModel,
     coarsening_for,
 )
-from mechlib.hexflex.fe.pose import fit_operator
 from mechlib.params import check_float
 
 #: The lean mesh: flexure element size (fraction of the narrowest flexure width), largest
@@ -135,7 +135,7 @@ class StageFitModel(HexFlexModel):
 
     def pose_of(self, reduced: np.ndarray) -> np.ndarray:
         """Stage pose(s) [µm, µrad] of reduced displacement vector(s): (6,) or (6, n)."""
-        with threadpool_limits(limits=1, user_api="blas"):  # as HexFlexModel.pose_of
+        with one_thread():  # as HexFlexModel.pose_of
             return self._fit @ (self._interp @ reduced)
 
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -4,7 +4,7 @@
 fit); this module assembles its stiffness once, factorises it, and answers load cases by
 back-substitution: a load case costs one solve, and the 6 × 6 compliance (pose per unit actuator
 force, µm/N and µrad/N, columns in the order of Eq 4) six of them. The geometrically non-linear
-solve is built on a model, ``NonlinearSolver(model)`` (:mod:`mechlib.hexflex.fe.nonlinear`; the
+solve is built on a model, ``NonlinearSolver(model)`` (:mod:`mechlib.fe.nonlinear`; the
 model knows nothing of it), the mesh study lives in :mod:`mechlib.hexflex.studies.convergence`.
 """
 
@@ -16,12 +16,13 @@ from dataclasses import dataclass, field
 from functools import partial
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
+from mechlib.fe.factor import factorise
+from mechlib.fe.sfepy_base import assemble_stiffness, integral
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.fe import mesh as ms
 from mechlib.hexflex.fe import problem as fe
-from mechlib.hexflex.fe.factor import factorise
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.params import check_choice, check_float, check_matrix
 
@@ -137,7 +138,7 @@ class HexFlexModel:
 
     def _assemble(self):
         """Tangent (= stiffness) matrix of the Problem's own equations, reduced to free DOFs."""
-        return fe.assemble_stiffness(self.fe.pb, self.n_dofs)
+        return assemble_stiffness(self.fe.pb, self.n_dofs)
 
     # public API -----------------------------------------------------------------------------
     @property
@@ -170,18 +171,18 @@ class HexFlexModel:
         whose multi-threaded kernels change the last bits with the thread count, and a worker
         process (one thread) must return the same numbers as the main process.
         """
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             return self._lu.solve(np.ascontiguousarray(rhs))
 
     def pose_of(self, reduced: np.ndarray) -> np.ndarray:
         """Stage pose(s) [µm, µrad] of reduced displacement vector(s): (6,) or (6, n)."""
-        with threadpool_limits(limits=1, user_api="blas"):  # see back_substitute
+        with one_thread():  # see back_substitute
             return self.fe.fit @ reduced[self.fe.stage_idx]
 
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The stage's nodes (m, 3) [mm] and their displacements (m, 3) [mm] in the reduced
         displacement vector ``reduced``: what :meth:`pose_of` fits, for an exact rigid
-        registration (:func:`mechlib.hexflex.fe.finite_pose.finite_poses`)."""
+        registration (:func:`mechlib.fe.finite_pose.finite_poses`)."""
         points = self.fe.coors[geo.in_stage(self.fe.coors, self.geometry)]
         return points, np.asarray(reduced)[self.fe.stage_idx].reshape(-1, 3)
 
@@ -212,7 +213,7 @@ class HexFlexModel:
         dirs = geo.actuator_directions()
         area = 2 * g.tab_half_width * g.thickness  # the external edge's end face [mm²]
         stiff = Term.new(
-            "dw_lin_elastic(m.D, v, u)", fe.integral(), p.omega, m=p.material, v=p.v, u=p.u
+            "dw_lin_elastic(m.D, v, u)", integral(), p.omega, m=p.material, v=p.v, u=p.u
         )
         stage = geo.in_stage(p.coors, g)
         out = np.empty((len(f), 6))
@@ -222,7 +223,7 @@ class HexFlexModel:
                 force = row[2 * k] * dirs[2 * k] + row[2 * k + 1] * dirs[2 * k + 1]
                 mat = Material(f"f{k}", val=(force / area)[:, None])
                 term = Term.new(
-                    f"dw_surface_ltr(f{k}.val, v)", fe.integral(), p.edges[k], v=p.v,
+                    f"dw_surface_ltr(f{k}.val, v)", integral(), p.edges[k], v=p.v,
                     **{f"f{k}": mat},
                 )  # fmt: skip
                 rhs = term if rhs is None else rhs + term

@@ -22,39 +22,18 @@ from typing import Any
 
 import numpy as np
 
+from mechlib.fe.pose import fit_operator
+from mechlib.fe.sfepy_base import QUAD_ORDER, integral, quiet_sfepy
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.fe import mesh as ms
-from mechlib.hexflex.fe.pose import fit_operator
 
 ELEMENTS: tuple[str, ...] = ("q2", "shell")
 #: Shell drilling stiffness factor (SfePy's shell10x examples).
 SHELL_DRILL = 1e-7
-#: Quadrature order of the Q2 solid terms.
-QUAD_ORDER = 4
 #: Parts of the moving body (stiffened by ``body_factor``); the others are the beams.
 BODY_PARTS: tuple[str, ...] = ("stage", "tab")
 #: Relative tolerance of the region selections (coordinates on a cut line or an edge).
 _REGION_TOL = 1e-6
-
-
-def quiet_sfepy() -> None:
-    """Silence SfePy's console output, including the notice its term modules print on import
-    when the optional jax package is absent (jax-based terms are not used here)."""
-    import contextlib
-    import io
-
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        import sfepy.terms  # noqa: F401  (imported once, here, for its side effect only)
-        from sfepy.base.base import output
-
-    output.set_output(quiet=True)
-
-
-def integral(order: int = QUAD_ORDER):
-    """SfePy quadrature of the given order."""
-    from sfepy.discrete import Integral
-
-    return Integral("i", order=order)
 
 
 @dataclass
@@ -291,12 +270,3 @@ def edge_load(prob: FEProblem, k: int, force: np.ndarray, g: geo.HexFlexGeometry
     ok = dofs >= 0
     red[dofs[ok]] = full[ok]
     return red
-
-
-def assemble_stiffness(pb, n_dofs: int):
-    """The tangent (= linear stiffness) matrix of SfePy problem ``pb``'s own equations at zero
-    displacement, reduced to its ``n_dofs`` free DOFs (a copy)."""
-    pb.time_update(create_matrix=True)
-    pb.get_variables().init_state()
-    pb.update_materials()
-    return pb.get_evaluator().eval_tangent_matrix(np.zeros(n_dofs)).copy()

@@ -13,7 +13,7 @@ import numpy as np
 import scipy.sparse as sp
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+    from mechlib.fe.nonlinear import NonlinearSolver
 
 #: Basis vectors whose Gram–Schmidt remainder is below this fraction of their norm are dropped.
 RANK_TOL = 1e-8

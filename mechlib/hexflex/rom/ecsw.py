@@ -18,12 +18,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.optimize import nnls
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.params import check_float, check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.svk_tangent import SVKTangent
+    from mechlib.fe.svk_tangent import SVKTangent
 
 #: Elements per batch when the element contributions are computed (temporaries ∝ CHUNK).
 CHUNK = 64
@@ -86,7 +86,7 @@ def nonlinear_contributions(
     out = np.empty((n_s, 2, n, n_el))
     disp = basis @ states.T  # (n_dofs, n_s)
     nodal = np.concatenate([disp.reshape(-1, 3, n_s), np.zeros((1, 3, n_s))])
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         for start in range(0, n_el, chunk):
             stop = min(start + chunk, n_el)
             cells = np.arange(start, stop)
@@ -147,7 +147,7 @@ def greedy_nnls(
     active: list[int] = []
     weights = np.zeros(0)
     residual = target.copy()
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         while np.linalg.norm(residual) > tol * scale:
             if len(active) >= max_elements:
                 raise ValueError(

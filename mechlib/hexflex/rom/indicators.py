@@ -23,7 +23,7 @@ import numpy as np
 from mechlib.params import check_choice
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
+    from mechlib.fe.nonlinear import NonlinearSolver
     from mechlib.hexflex.rom.model import ReducedOrderModel
 
 TANGENTS: tuple[str, ...] = ("linear", "exact")

@@ -58,7 +58,7 @@ def nonlinear_states(
 
     Raises
     ------
-    mechlib.hexflex.fe.nonlinear.ConvergenceError
+    mechlib.fe.nonlinear.ConvergenceError
         From the first run that does not converge (a snapshot set must be complete).
     """
     d = check_forces_design(design)

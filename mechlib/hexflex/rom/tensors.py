@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg.blas import dsymv, dsyrk
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.hexflex.rom.ecsw import element_basis
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.svk_tangent import SVKTangent
+    from mechlib.fe.svk_tangent import SVKTangent
 
 #: Elements per batch when the tensors are accumulated (temporaries ∝ CHUNK · n²).
 CHUNK = 8
@@ -123,7 +123,7 @@ def polynomial_force(
     stiff = np.zeros((n, n))
     cubic = np.zeros((n, n * n))
     quartic = np.zeros((len(iu), len(iu)), order="F")
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         for start in range(0, len(cells), chunk):
             sel = cells[start : start + chunk]
             ve = element_basis(tangent, basis, sel).reshape(len(sel), 3, -1, n)  # (m, c, a, n)

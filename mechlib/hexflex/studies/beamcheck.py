@@ -61,7 +61,7 @@ def fe_tip(
     tip_length: float | None = None,
 ) -> float:
     """Mean tip deflection per unit force [mm/N] of the Q2 one-layer model of the beam."""
-    from mechlib.hexflex.fe.problem import QUAD_ORDER, integral, quiet_sfepy
+    from mechlib.fe.sfepy_base import QUAD_ORDER, integral, quiet_sfepy
 
     quiet_sfepy()  # before the first SfePy import prints its notices
     from sfepy.discrete import Equation, Equations, FieldVariable, Material, Problem

@@ -2,7 +2,7 @@
 
 A prismatic cantilever of Q2 (27-node) hexahedra, clamped at x = 0, carries a dead load P along
 +z spread as a uniform traction over its end face. :class:`Cantilever` has what
-:class:`~mechlib.hexflex.fe.nonlinear.NonlinearSolver` and :class:`~mechlib.hexflex.fe.svk_tangent.
+:class:`~mechlib.fe.nonlinear.NonlinearSolver` and :class:`~mechlib.fe.svk_tangent.
 SVKTangent` read from a ``HexFlexModel`` (``element``, ``body_factor``, ``young``, ``poisson``,
 ``fe``, ``n_dofs``, ``load_vectors``, ``check_forces``, ``back_substitute``), so the HexFlex's
 total-Lagrangian Saint Venant–Kirchhoff code path solves it; its one "actuator force" is P [N].
@@ -25,9 +25,9 @@ from typing import Any
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex.fe import problem as fe
-from mechlib.hexflex.fe.factor import factorise
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver, SolveStats
+from mechlib.fe import sfepy_base as fe
+from mechlib.fe.factor import factorise
+from mechlib.fe.nonlinear import NonlinearSolver, SolveStats
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.hexflex.studies.elastica import MAX_ALPHA, TipResponse, check_alpha, elastica_tip
 from mechlib.params import check_float, check_int, check_matrix

@@ -23,8 +23,8 @@ import numpy as np
 from mechlib.params import check_matrix
 
 if TYPE_CHECKING:
+    from mechlib.fe.nonlinear import NonlinearSolver
     from mechlib.hexflex.campaign.experiments import ModelSpec
-    from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 
 
 def parity_split(plus: object, minus: object, linear_plus: object) -> dict[str, np.ndarray]:
@@ -172,10 +172,10 @@ def linear_poses_for(spec: ModelSpec, forces: object, cache_dir: Path | None = N
     numpy.ndarray (n, 6)
         The linear stage poses [µm, µrad] on ``spec``'s mesh, with its quadrature.
     """
+    from mechlib.fe.sfepy_base import QUAD_ORDER
     from mechlib.hexflex.campaign.compliance import compliance
     from mechlib.hexflex.campaign.experiments import solver_for
     from mechlib.hexflex.fe.model import check_forces
-    from mechlib.hexflex.fe.problem import QUAD_ORDER
 
     if spec.quad_order == QUAD_ORDER:
         f = np.asarray(forces, dtype=float)

@@ -15,8 +15,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mechlib.fe.nonlinear import NonlinearSolver
 from mechlib.hexflex.fe.model import MAX_FORCE_N
-from mechlib.hexflex.fe.nonlinear import NonlinearSolver
 from mechlib.params import check_increasing, check_int, check_matrix
 
 if TYPE_CHECKING:

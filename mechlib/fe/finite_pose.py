@@ -1,13 +1,13 @@
 """Pose of the motion stage at finite rotation: exact rigid registration of its nodes.
 
-:mod:`mechlib.hexflex.fe.pose` fits ``u = t + θ × (X − c)``, which is exact only for infinitesimal
+:mod:`mechlib.fe.pose` fits ``u = t + θ × (X − c)``, which is exact only for infinitesimal
 rotations. Here the stage's nodes are registered by the exact least-squares rigid motion
 ``X ↦ R (X − X̄) + Y̅`` (Kabsch, :meth:`scipy.spatial.transform.Rotation.align_vectors` on the
 centred point sets, every node weighted equally), and the pose is reported in three conventions,
 all as [x y z θx θy θz] in µm and µrad for coordinates and displacements in mm:
 
 ``"small"``
-    the small-rotation fit of :func:`mechlib.hexflex.fe.pose.fit_operator` (what the linear model's
+    the small-rotation fit of :func:`mechlib.fe.pose.fit_operator` (what the linear model's
     tables use);
 ``"rotvec"``
     the translation of the stage centre ``c`` and the rotation vector of ``R`` (axis × angle);
@@ -17,7 +17,7 @@ all as [x y z θx θy θz] in µm and µrad for coordinates and displacements in
 
 The translation is the displacement of the stage centre ``c`` under the rigid motion,
 ``Y̅ − X̄ + R (c − X̄) − (c − X̄)``: the same point whose translation the small-rotation fit
-reports. ``c`` defaults to the origin, as in :func:`~mechlib.hexflex.fe.pose.fit_operator` (the
+reports. ``c`` defaults to the origin, as in :func:`~mechlib.fe.pose.fit_operator` (the
 meshes put the stage centre, the thesis's moving frame, at the origin; sec. 2.6.1).
 
 The three conventions agree to first order in the rotation. At the tilts of the non-linear runs
@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.spatial.transform import Rotation
 
-from mechlib.hexflex.fe.pose import POSE_SCALE, fit_operator
+from mechlib.fe.pose import POSE_SCALE, fit_operator
 from mechlib.params import check_matrix
 
 #: Euler-angle sequence of the ``"euler_xyz"`` convention, in SciPy's notation: upper case is
@@ -94,7 +94,7 @@ def register(
         Displaced coordinates ``Y = X + u`` [mm], row for row.
     center : array_like, shape (3,), optional
         The point whose displacement is reported as the translation [mm]; default the origin
-        (the stage centre, as in :func:`mechlib.hexflex.fe.pose.fit_operator`).
+        (the stage centre, as in :func:`mechlib.fe.pose.fit_operator`).
 
     Returns
     -------
@@ -130,7 +130,7 @@ def finite_poses(
     displacements : array_like, shape (n, 3) or (n_sets, n, 3)
         Nodal displacements [mm] of one or several solutions, rows as in ``points``.
     center : array_like, shape (3,), optional
-        The stage centre [mm]; default the origin (as :func:`mechlib.hexflex.fe.pose.fit_operator`).
+        The stage centre [mm]; default the origin (as :func:`mechlib.fe.pose.fit_operator`).
 
     Returns
     -------

@@ -1,11 +1,11 @@
-"""SfePy's total-Lagrangian Saint Venant–Kirchhoff term on a HexFlex model, consistent tangent.
+"""SfePy's total-Lagrangian Saint Venant–Kirchhoff term on a Q2 solid model, consistent tangent.
 
 SfePy 2026.3's ``dw_tl_he_svk`` term doubles the shear *rows* of its tangent modulus, so its
 tangent is not the derivative of its residual (Newton then converges only linearly, at rate ½).
 :func:`register_svk_term` adds ``dw_tl_he_svk_consistent``, the same residual with the consistent
 tangent; ``tests/test_hexflex.py`` checks it against finite differences of the residual.
 :func:`tl_evaluator` evaluates either term on a model's field and clamp. The solver's default
-tangent and residual (:mod:`mechlib.hexflex.fe.svk_tangent`) compute the same numbers batched; this
+tangent and residual (:mod:`mechlib.fe.svk_tangent`) compute the same numbers batched; this
 module is their reference (tests, ``make bench``) and the solver's ``tangent="sfepy"``.
 """
 
@@ -13,19 +13,19 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mechlib.hexflex.fe import problem as fe
+from mechlib.fe import sfepy_base as fe
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.model import HexFlexModel
+    from mechlib.fe.protocol import SolidModel
 
 
-def tl_evaluator(model: HexFlexModel, term: str):
+def tl_evaluator(model: SolidModel, term: str):
     """SfePy evaluator (residual, tangent) of one total-Lagrangian term taking the linear
     model's elasticity tensor, ``term(s.D, v, u)``, on the model's field and clamp.
 
     Parameters
     ----------
-    model : HexFlexModel
+    model : SolidModel
         A Q2 model.
     term : str
         SfePy term name, e.g. ``"dw_tl_he_svk"`` (the stock term) or the consistent one.

@@ -1,6 +1,6 @@
-"""Fast exact tangent stiffness of the total-Lagrangian Saint Venant–Kirchhoff HexFlex (Q2).
+"""Fast exact tangent stiffness of a total-Lagrangian Saint Venant–Kirchhoff Q2 solid.
 
-The same matrix as SfePy's ``dw_tl_he_svk_consistent`` term (:mod:`mechlib.hexflex.fe.nonlinear`),
+The same matrix as SfePy's ``dw_tl_he_svk_consistent`` term (:mod:`mechlib.fe.nonlinear`),
 built with batched BLAS instead of SfePy's C loop over quadrature points. With ``F = I + ∇u``
 (∇ in the reference configuration), the Green strain ``E = ½ (FᵀF − I)`` and the second
 Piola–Kirchhoff stress ``S = λ tr(E) I + 2 μ E`` (λ, μ read from SfePy's isotropic
@@ -15,7 +15,7 @@ is the quadrature weight times det J. For an isotropic ``D`` the material term n
 ``Σ_q w (λ h_ac h_bd + μ h_ad h_bc + μ b_cd ∇N_a·∇N_b)`` — one product over the stacked ``h``
 and six small ones over ∇N, half the multiplications of ``Bᵀ (D B)``. The element matrices
 are summed into the CSR pattern (or its upper triangle, what a Cholesky reads) by one
-``np.bincount`` over an index computed once. Like :func:`mechlib.hexflex.fe.sfepy_tl.tl_evaluator`,
+``np.bincount`` over an index computed once. Like :func:`mechlib.fe.sfepy_tl.tl_evaluator`,
 one ``D`` acts on the whole domain (the model's ``body_factor`` is not applied), and the clamp
 holds the ground at zero displacement.
 """
@@ -26,13 +26,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
-from threadpoolctl import threadpool_limits
 
-from mechlib.hexflex.fe import problem as fe
+from mechlib.blas import one_thread
+from mechlib.fe import sfepy_base as fe
 from mechlib.params import check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.model import HexFlexModel
+    from mechlib.fe.protocol import SolidModel
 
 #: Elements per batch of matrix products: small batches keep the temporaries (≤ 1.7 MB each at
 #: 32 Q2 elements) in cache; 16–64 were measured within 5 %, 8 and 128 6–12 % slower.
@@ -40,7 +40,7 @@ CHUNK = 32
 
 
 class SVKTangent:
-    """Tangent stiffness of the TL Saint Venant–Kirchhoff model of one Q2 HexFlex model.
+    """Tangent stiffness of the TL Saint Venant–Kirchhoff model of one Q2 solid model.
 
     Built once per model: it holds the basis-function gradients in physical coordinates at the
     quadrature points and their weights (weight · det J), the elements' free-node connectivity,
@@ -48,13 +48,13 @@ class SVKTangent:
 
     Parameters
     ----------
-    model : HexFlexModel
+    model : SolidModel
         A model with ``element="q2"``.
     chunk : int, optional
         Elements per batch of matrix products, in [1, 5000] (temporaries ∝ ``chunk``).
     order : int, optional
         Quadrature order (SfePy's, on the hexahedron), in [2, 10]: the default
-        :data:`mechlib.hexflex.fe.problem.QUAD_ORDER` (3 × 3 × 3 Gauss points) is the linear
+        :data:`mechlib.fe.sfepy_base.QUAD_ORDER` (3 × 3 × 3 Gauss points) is the linear
         model's; a higher one checks the quadrature error of the non-linear integrands.
 
     Raises
@@ -69,7 +69,7 @@ class SVKTangent:
     two indices and a buffer of half that size each, ≈ 400 MB): not thread-safe.
     """
 
-    def __init__(self, model: HexFlexModel, chunk: int = CHUNK, order: int = fe.QUAD_ORDER) -> None:
+    def __init__(self, model: SolidModel, chunk: int = CHUNK, order: int = fe.QUAD_ORDER) -> None:
         if model.element != "q2":
             raise ValueError(
                 f"element must be 'q2' for the TL Saint Venant–Kirchhoff tangent (SVKTangent), "
@@ -152,7 +152,7 @@ class SVKTangent:
     def upper_values(self, u: object) -> np.ndarray:
         """The upper triangle (column ≥ row) of :meth:`values`, in CSR order: row by row,
         columns increasing — the lower triangle of the symmetric matrix in column-major order,
-        which is what :meth:`mechlib.hexflex.fe.factor.PatternCholesky.factorise_upper` of
+        which is what :meth:`mechlib.fe.factor.PatternCholesky.factorise_upper` of
         :meth:`pattern` takes. Only the element-matrix entries that land there are summed; the
         same numbers, bit for bit, as ``values(u)`` at those positions. Raises as :meth:`matrix`.
         """
@@ -176,7 +176,7 @@ class SVKTangent:
         n_el, n_ep = self._nodes.shape
         if self._values is None:
             self._values = np.empty((n_el, 3 * n_ep, 3 * n_ep))
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             for start in range(0, n_el, self.chunk):
                 cells = slice(start, start + self.chunk)
                 self._element_matrices(nodal[self._nodes[cells]], cells, self._values[cells])
@@ -204,7 +204,7 @@ class SVKTangent:
             dof = 3 * node[:, None, :] + np.arange(3)[None, :, None]
             self._dof_index = np.where(self._nodes[:, None, :] >= 0, dof, self.n_dofs).ravel()
         forces = np.empty((n_el, 3 * n_ep))
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             for start in range(0, n_el, self.chunk):
                 cells = slice(start, start + self.chunk)
                 out = self._element_forces(nodal[self._nodes[cells]], cells)

@@ -1,20 +1,21 @@
-"""Geometrically non-linear HexFlex: total-Lagrangian Saint Venant–Kirchhoff, Newton with steps.
+"""Geometrically non-linear solid (the HexFlex, a compliant layout): total-Lagrangian Saint
+Venant–Kirchhoff, Newton with steps.
 
 The material is the linear model's own elasticity tensor between Green–Lagrange strain and second
 Piola–Kirchhoff stress — large displacements and rotations with a linear-elastic material, which
 is what a "geometrically non-linear" analysis of a metal flexure means. The actuator loads are
-dead loads (fixed direction) on the tabs' external edges, as in the linear model. The solve runs
+dead loads (fixed direction) on the model's load faces, as in the linear model. The solve runs
 over equal load steps; the first correction from the undeformed state reuses the linear
 factorisation (the tangent at u = 0 *is* the linear stiffness). By default it is a modified Newton
 method: a factorised tangent is kept while its (Anderson-accelerated) corrections converge fast
 enough, and refactorised when they slow down — 3 factorisations per validation run on the
 identified model instead of Newton's 5–6, for the same equilibrium (``make bench``). The tangent
-and the residual are computed by :mod:`mechlib.hexflex.fe.svk_tangent` (the same numbers as SfePy's
+and the residual are computed by :mod:`mechlib.fe.svk_tangent` (the same numbers as SfePy's
 term, batched), and a tangent is factorised by CHOLMOD's Cholesky with the pattern's analysis
-done once (:mod:`mechlib.hexflex.fe.factor`). Q2 solid only.
+done once (:mod:`mechlib.fe.factor`). Q2 solid only.
 
 ``tangent="sfepy"`` assembles SfePy's TL term instead (its consistent variant, from
-:mod:`mechlib.hexflex.fe.sfepy_tl`): the reference the batched tangent is tested and benchmarked
+:mod:`mechlib.fe.sfepy_tl`): the reference the batched tangent is tested and benchmarked
 against.
 """
 
@@ -28,15 +29,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 import scipy.sparse as sp
 
-from mechlib.hexflex.fe.anderson import Anderson
-from mechlib.hexflex.fe.factor import SOLVERS, PatternCholesky, factorise
-from mechlib.hexflex.fe.problem import QUAD_ORDER
-from mechlib.hexflex.fe.sfepy_tl import register_svk_term, tl_evaluator
-from mechlib.hexflex.fe.svk_tangent import SVKTangent
+from mechlib.fe.anderson import Anderson
+from mechlib.fe.factor import SOLVERS, PatternCholesky, factorise
+from mechlib.fe.sfepy_base import QUAD_ORDER
+from mechlib.fe.sfepy_tl import register_svk_term, tl_evaluator
+from mechlib.fe.svk_tangent import SVKTangent
 from mechlib.params import check_choice, check_float, check_int
 
 if TYPE_CHECKING:
-    from mechlib.hexflex.fe.model import HexFlexModel
+    from mechlib.fe.protocol import SolidModel
 
 #: Newton stopping rule: ‖residual‖ ≤ NEWTON_TOL · ‖external load‖. The round-off floor of the
 #: TL residual on these meshes is ≈ 3e-9 (measured), so tighter values cannot be met.
@@ -94,20 +95,20 @@ class _GaveUp(Exception):
 
 
 class NonlinearSolver:
-    """Newton solver of the TL Saint Venant–Kirchhoff HexFlex for one linear model.
+    """Newton solver of the TL Saint Venant–Kirchhoff solid for one linear model.
 
     Parameters
     ----------
-    model : HexFlexModel
+    model : SolidModel
         A Q2 model with ``body_factor`` 1 (its factorised stiffness is the first tangent).
     tangent : {"batched", "sfepy"}
-        How the tangent is assembled: :class:`mechlib.hexflex.fe.svk_tangent.SVKTangent` (default;
+        How the tangent is assembled: :class:`mechlib.fe.svk_tangent.SVKTangent` (default;
         built here, ≈ 0.4 s a tangent on the identified model) or SfePy's term (≈ 4.3 s); the
         same matrix to round-off (``make bench`` compares them). The choice also sets the
         residual: ``SVKTangent.internal_force`` or SfePy's (equal to round-off).
     factorisation : {"cholmod", "superlu"}
         How a tangent is factorised: a supernodal Cholesky with the pattern's analysis done once
-        (:class:`mechlib.hexflex.fe.factor.PatternCholesky`, default; an indefinite tangent falls
+        (:class:`mechlib.fe.factor.PatternCholesky`, default; an indefinite tangent falls
         back to LU) or SuperLU's LU of every tangent (``make bench`` compares them).
     quad_order : int
         Quadrature order of the batched tangent and residual (:class:`SVKTangent`'s ``order``;
@@ -116,7 +117,7 @@ class NonlinearSolver:
 
     def __init__(
         self,
-        model: HexFlexModel,
+        model: SolidModel,
         tangent: str = "batched",
         factorisation: str = "cholmod",
         quad_order: int = QUAD_ORDER,

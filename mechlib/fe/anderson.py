@@ -9,7 +9,8 @@ information instead of linearly.
 from __future__ import annotations
 
 import numpy as np
-from threadpoolctl import threadpool_limits
+
+from mechlib.blas import one_thread
 
 
 class Anderson:
@@ -47,6 +48,6 @@ class Anderson:
         if not self._df:
             return f
         df = np.stack(self._df, axis=1)
-        with threadpool_limits(limits=1, user_api="blas"):  # bit-identical in any process
+        with one_thread():  # bit-identical in any process
             gamma = np.linalg.lstsq(df, f, rcond=None)[0]
             return f - (np.stack(self._dx, axis=1) + df) @ gamma

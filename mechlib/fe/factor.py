@@ -1,4 +1,4 @@
-"""Sparse factorisations of the HexFlex's stiffness and tangent matrices.
+"""Sparse factorisations of a solid model's stiffness and tangent matrices.
 
 :func:`factorise` is SuperLU's LU with an ordering suited to FE matrices (the linear model's
 stiffness, and the fallback for a tangent that is not positive definite). :class:`PatternCholesky`
