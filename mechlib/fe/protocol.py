@@ -1,8 +1,10 @@
 """What the non-linear solver (:mod:`mechlib.fe.nonlinear`) needs of a linear FE model.
 
-The HexFlex's model (:class:`mechlib.hexflex.fe.model.HexFlexModel`) and a compliant layout's
-(:class:`mechlib.compliant.model.MechanismModel`) both provide it; the solver, its tangent and its
-SfePy reference term are written against this protocol alone, so that they import no mechanism.
+The HexFlex's model (:class:`mechlib.hexflex.fe.model.HexFlexModel`), a compliant layout's
+(:class:`mechlib.compliant.model.MechanismModel`) and the cantilever benchmark's
+(:class:`mechlib.hexflex.studies.cantilever.Cantilever`) provide it; the solver, its tangent and
+its SfePy reference term are written against this protocol alone, so that they import no
+mechanism.
 """
 
 from __future__ import annotations
