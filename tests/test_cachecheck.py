@@ -126,3 +126,12 @@ def test_the_determinism_sample_leaves_the_stores_entries_to_the_store_check(
     assert "results store's entries" in capsys.readouterr().out
     assert cli._cold_sample(rerun, 1) is False  # without the store: recomputed, bit-identical
     assert "bit-identical" in capsys.readouterr().out
+    # a cache file that is not the store's entry under its key is found, not left out
+    (entry,) = [e for e in cc.read_log(log) if e["kind"] == "nonlinear"]
+    np.save(cache / entry["file"], np.load(cache / entry["file"]) * (1 + 1e-12))
+    assert cli._cold_sample(rerun, 1, folder) is True
+    assert "DIFFERS from the results store's entry" in capsys.readouterr().out
+    # a re-run that read no non-linear task has nothing to show: it fails
+    (rerun / HIT_LOG).write_text("")
+    assert cli._cold_sample(rerun, 1, folder) is True
+    assert "read no non-linear FE task" in capsys.readouterr().out

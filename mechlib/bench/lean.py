@@ -26,13 +26,12 @@ SWEEP = (0.05, 0.1, 0.25, 0.5, 0.75, 1.0)
 def _runs(model, cases: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Non-linear poses (n, 6), linear poses (n, 6), wall times (n,) [s] and factorisations
     (n,) of ``cases`` (n, 6) [N] on ``model``, one BLAS thread."""
-    from threadpoolctl import threadpool_limits
-
+    from mechlib.blas import one_thread
     from mechlib.fe.nonlinear import NonlinearSolver
 
     solver = NonlinearSolver(model)
     poses, seconds, facts = [], [], []
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         for f in cases:
             t0 = time.perf_counter()
             u, stats = solver.solve(f)

@@ -100,18 +100,19 @@ def solve(
     Raises
     ------
     RuntimeError
-        When a run does not converge (:func:`solve_keeping` leaves such runs out instead),
-        naming each with its loads and last relative residual.
+        When a run fails — does not converge, or its task raised — (:func:`solve_keeping`
+        leaves such runs out instead), naming each with its loads, last relative residual and
+        the reason its campaign gave.
     """
     _, poses, failures = solve_keeping(spec, loads, steps=steps, workers=workers,
                                        cache_dir=cache_dir)  # fmt: skip
     if failures:
         runs = "; ".join(
             f"row {f.index} (loads {f.forces} in N and N·mm, last relative residual "
-            f"{f.residual:.3g})"
+            f"{f.residual:.3g}): {f.reason}"
             for f in failures
         )
-        raise RuntimeError(f"{len(failures)} run(s) did not converge: {runs}")
+        raise RuntimeError(f"{len(failures)} run(s) failed: {runs}")
     return poses
 
 

@@ -71,24 +71,35 @@ def _determinism(args: argparse.Namespace) -> int:
 
 
 def _cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -> bool:
-    """Recompute a seeded sample of the FE tasks the re-run read from its cache (those of the
-    results store ``store`` left out: its own cold check covers them); True if one differs from
-    its cached result."""
+    """Recompute a seeded sample of the FE tasks the re-run read from its cache (those whose
+    file holds the results store ``store``'s entry under the same key left out: the store's own
+    cold check covers them); True if one differs from its cached result, if a cache file differs
+    from the store's entry of its key, or if the re-run read no non-linear task."""
+    import numpy as np
+
     from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_sample, read_log
     from mechlib.hexflex.campaign.store import read_store
 
-    stored = frozenset(f"{e.key}.npy" for e in read_store(store)[1]) if store else frozenset()
     read = read_log(rerun_dir / HIT_LOG)
+    if not any(e["kind"] == "nonlinear" for e in read):
+        print("determinism: the re-run read no non-linear FE task from the cache to recompute")
+        return True
+    entries = {f"{e.key}.npy": e.results for e in read_store(store)[1]} if store else {}
+    cache = rerun_dir / "fe-cache"
+    stored = {e["file"] for e in read if e["file"] in entries}
+    edited = sorted(f for f in stored if not np.array_equal(np.load(cache / f), entries[f]))
+    for f in edited:
+        print(f"  cached task {f} DIFFERS from the results store's entry under its key")
     own = [e for e in read if e["file"] not in stored]
-    if stored and not any(e["kind"] == "nonlinear" for e in own):
+    if not own:
         print(
             f"determinism: all {len(read)} FE tasks the re-run read from the cache are the "
             f"results store's entries, which its own cold sample recomputes (store check)"
         )
-        return False
+        return bool(edited)
     per_kind = {"nonlinear": n_nonlinear, "linear": 1}
     checks = check_sample(
-        rerun_dir / HIT_LOG, rerun_dir / "fe-cache", per_kind, workers=2, exclude=stored
+        rerun_dir / HIT_LOG, cache, per_kind, workers=2, exclude=frozenset(stored)
     )
     for c in checks:
         verdict = (
@@ -100,9 +111,6 @@ def _cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -
         )
         print(f"  cached {c.kind} task {c.file} ({c.rows} run(s)) recomputed cold: {verdict}")
     bad = [c for c in checks if not c.agrees]
-    if not any(c.kind == "nonlinear" for c in checks):
-        print("determinism: the re-run read no non-linear FE task from the cache to recompute")
-        return True
     print(
         f"determinism: {len(checks) - len(bad)} of {len(checks)} sampled FE tasks (of the "
         f"{len(own)} the re-run read from the cache, {len(read) - len(own)} store entries left "
@@ -110,7 +118,7 @@ def _cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -
         f"(within {AGREE_RTOL:g} of each task's largest pose component; "
         f"{sum(c.identical for c in checks)} bit-identical)"
     )
-    return bool(bad)
+    return bool(bad) or bool(edited)
 
 
 #: commands whose own modules parse their arguments

@@ -20,8 +20,8 @@ from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.compliant.model import MechanismModel
 from mechlib.compliant.spec import MechanismSpec
 from mechlib.fe.finite_pose import CONVENTIONS, finite_poses
@@ -76,7 +76,7 @@ def model_for(spec: Spec) -> HexFlexModel | MechanismModel:
 
 @lru_cache(maxsize=4)
 def _model(spec: Spec) -> HexFlexModel | MechanismModel:
-    with threadpool_limits(limits=1, user_api="blas"):  # the same bits wherever it is built
+    with one_thread():  # the same bits wherever it is built
         return spec.build()
 
 
@@ -136,7 +136,7 @@ def solver_for(spec: Spec) -> NonlinearSolver:
 
 
 def _task(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    with threadpool_limits(limits=1, user_api="blas"):  # in a pool, in-process or on Dask alike
+    with one_thread():  # in a pool, in-process or on Dask alike
         return _solve(spec, kind, forces, steps)
 
 

@@ -1,11 +1,12 @@
 """A benchmark with a known answer for the non-linear solver: the slender cantilever's elastica.
 
 A prismatic cantilever of Q2 (27-node) hexahedra, clamped at x = 0, carries a dead load P along
-+z spread as a uniform traction over its end face. :class:`Cantilever` has what
++z spread as a uniform traction over its end face. :class:`Cantilever` provides what
 :class:`~mechlib.fe.nonlinear.NonlinearSolver` and :class:`~mechlib.fe.svk_tangent.
-SVKTangent` read from a ``HexFlexModel`` (``element``, ``body_factor``, ``young``, ``poisson``,
-``fe``, ``n_dofs``, ``load_vectors``, ``check_forces``, ``back_substitute``), so the HexFlex's
-total-Lagrangian Saint Venant–Kirchhoff code path solves it; its one "actuator force" is P [N].
+SVKTangent` read from a model (:class:`mechlib.fe.protocol.SolidModel`: ``element``,
+``body_factor``, ``young``, ``poisson``, ``fe``, ``n_dofs``, ``load_vectors``, ``check_forces``,
+``back_substitute``), so the solid FE core's total-Lagrangian Saint Venant–Kirchhoff code path
+that solves the HexFlex solves it; its one "actuator force" is P [N].
 
 The reference is the inextensible Euler–Bernoulli elastica (:mod:`.elastica`). The solid
 differs from it by shear (O((h/L)²)), by the clamp's restraint of the Poisson contraction
@@ -23,8 +24,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.fe import sfepy_base as fe
 from mechlib.fe.factor import factorise
 from mechlib.fe.nonlinear import NonlinearSolver, SolveStats
@@ -171,7 +172,7 @@ class Cantilever:
             raise ValueError("clamped must be True to solve: a floating cantilever is singular")
         if self._lu is None:
             self._lu = factorise(self._matrix)
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             return self._lu.solve(np.ascontiguousarray(rhs))
 
     def assembled_stiffness(self):
@@ -255,7 +256,7 @@ class Cantilever:
 
     def _end_load(self) -> np.ndarray:
         """Reduced consistent load vector of a uniform traction (0, 0, 1/A) on the end face:
-        integrated exactly (Q2 on a flat face, quadrature order ``problem.QUAD_ORDER``)."""
+        integrated exactly (Q2 on a flat face, quadrature order ``sfepy_base.QUAD_ORDER``)."""
         from sfepy.discrete import Material
 
         traction = np.array([[0.0], [0.0], [1.0 / (self.width * self.depth)]])

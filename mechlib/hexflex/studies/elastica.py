@@ -8,7 +8,7 @@ rotation) and 1 + sin θ = 2k² sin² φ give, with k² = (1 + sin θ₀)/2 and 
     √α = K(k) − F(φ₁, k),  δ/L = 1 − (2/√α) [E(k) − E(φ₁, k)],  x_tip/L = √(2 sin θ₀ / α)
 
 (SciPy's ``ellipkinc``/``ellipeinc``; θ₀ by Brent's method). :mod:`.cantilever` solves the same
-beam as a solid with the HexFlex's non-linear solver and compares.
+beam as a solid with the non-linear solver the HexFlex's runs use and compares.
 """
 
 from __future__ import annotations
