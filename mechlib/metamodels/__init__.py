@@ -7,7 +7,7 @@ space-filling training designs; :mod:`.inverse`, forces for a desired pose by Ne
 :mod:`.study`, learning curves, error budgets and the inverse checked against the truth). Its
 modules import only each other (in that order: linear, quadratic, gaussian_process, metrics,
 families, scoring, inverse, study; designs imports none), :mod:`mechlib.params`,
-:mod:`mechlib.blas` (one BLAS thread), NumPy, SciPy,
+:mod:`mechlib.blas` (one BLAS thread), :mod:`mechlib.memo` (a fit remembered), NumPy, SciPy,
 scikit-learn, threadpoolctl and pandas; never the chapters' packages (``mechlib.hexflex``,
 ``mechlib.fivebar`` …), plotting or ``mechlib.pipeline``.
 """

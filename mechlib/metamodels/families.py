@@ -55,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mechlib.blas import one_thread
+from mechlib.memo import array_memo
 from mechlib.metamodels import linear, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
@@ -214,6 +215,7 @@ def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
     return {"exponents": exps, "coef": coef}
 
 
+@array_memo(maxsize=32)  # a chapter fits some families to the same runs twice
 def fit_surrogate(
     family: str,
     forces: object,
