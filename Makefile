@@ -138,7 +138,7 @@ test: $(STAMP)
 	@# re-run of every notebook from a copy of the first run's cache, the records compared) at
 	@# normal priority, and beside it, at a lower priority (nice), the work nothing waits on: the
 	@# unit tests and the store's cold sample from the start, the book, its checks and the PDF
-	@# once the first run's notebooks are done. The chain is the longest path; the side work
+	@# once the first run's notebooks are done and their records checked. The chain is the longest path; the side work
 	@# fills the cores it leaves idle (two chapters waiting on one, a re-run on its inputs).
 	$(MAKE) --no-print-directory $(STORE_SEEDED)
 	$(MAKE) --no-print-directory -j4 test-rerun test-book test-side
