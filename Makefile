@@ -135,13 +135,21 @@ test: $(STAMP)
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
 	@# The FE results store seeds the cache first. Then the work shares the two cores as a graph:
 	@# the chapters' chain (every notebook, their records against the references, the determinism
-	@# re-run of every notebook from a copy of the first run's cache, the records compared) at
-	@# normal priority, and beside it, at a lower priority (nice), the work nothing waits on: the
-	@# unit tests and the store's cold sample from the start, the book, its checks and the PDF
-	@# once the first run's notebooks are done and their records checked. The chain is the longest path; the side work
-	@# fills the cores it leaves idle (two chapters waiting on one, a re-run on its inputs).
+	@# re-run of every notebook from a copy of the first run's cache, the records compared), the
+	@# book, its checks and the PDF once the first run's notebooks are done and their records
+	@# checked, and beside them, at a lower priority, the work nothing waits on: the unit tests and
+	@# the store's cold sample, from the start. The chain is the longest path; the low-priority
+	@# work fills the cores it leaves idle (two chapters waiting on one, a re-run on its inputs).
+	@# (The book's checks keep the normal priority: the browser's pages have timeouts.)
 	$(MAKE) --no-print-directory $(STORE_SEEDED)
 	$(MAKE) --no-print-directory -j4 test-rerun test-book test-side
+
+# Work at a low priority. `nice` alone does not rank it below the notebooks where the kernel
+# groups processes by session for scheduling (Linux's autogroups, on by default): each notebook's
+# kernel starts a session of its own, and the kernel shares the cores fairly between sessions,
+# whatever their processes' nice values. So the work starts a session of its own (`setsid`) and
+# lowers that session's priority too (/proc/self/autogroup), where the machine has autogroups.
+LOW_PRIORITY = setsid --wait sh -c 'if test -w /proc/self/autogroup; then echo 5 > /proc/self/autogroup; fi; exec nice -n 5 "$$@"' low
 
 # the steps of `make test` (each a sub-make with its own job slots)
 test-first: $(STAMP)
@@ -154,13 +162,13 @@ test-rerun: test-first
 	  $(if $(wildcard $(STORE)/manifest.json),DETERMINISM_ARGS='--store-checked $(STORE)')
 
 test-book: test-first
-	nice -n 10 $(MAKE) --no-print-directory book-checks
+	$(MAKE) --no-print-directory book-checks
 
 # the unit tests (temporary folders only) and the store's cold sample, in which glibc keeps
 # freed memory for reuse (its model builds otherwise spend a third of their time in the kernel,
 # mapping and unmapping large arrays: measured 82 s of system time against 49 s)
 test-side: $(STAMP)
-	nice -n 10 $(MAKE) --no-print-directory -j2 unit store-check-reuse
+	$(LOW_PRIORITY) $(MAKE) --no-print-directory -j2 unit store-check-reuse
 
 store-check-reuse: $(STAMP)
 	MALLOC_MMAP_MAX_=0 MALLOC_TRIM_THRESHOLD_=17179869184 $(MAKE) --no-print-directory store-check
