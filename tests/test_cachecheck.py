@@ -34,6 +34,10 @@ def test_hits_are_logged_and_a_sample_recomputes_bit_identically(tmp_path, monke
     assert [c.kind for c in checks].count("nonlinear") == 1
     assert [c.kind for c in checks].count("linear") == 1  # all there are
     assert all(c.identical and c.agrees and c.max_abs_diff == 0.0 for c in checks)
+    # tasks another cold check covers (the results store's) are left out of the draw
+    linear = [e["file"] for e in entries if e["kind"] == "linear"]
+    checks = cc.check_sample(log, cache, {"nonlinear": 1, "linear": 5}, exclude=frozenset(linear))
+    assert [c.kind for c in checks] == ["nonlinear"]
 
 
 def test_a_tampered_cache_file_is_found(tmp_path, monkeypatch) -> None:
@@ -102,3 +106,32 @@ def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> 
         [c.file for c in one] == [c.file for c in two] == ["k0.npy", "k1.npy", "k2.npy", "k3.npy"]
     )
     assert [c.agrees for c in two] == [True, True, True, False]
+
+
+def test_the_determinism_sample_leaves_the_stores_entries_to_the_store_check(
+    tmp_path, monkeypatch, capsys
+) -> None:
+    from mechlib.hexflex.campaign import store
+    from mechlib.pipeline import cli
+    from mechlib.pipeline.rerun import HIT_LOG
+
+    forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
+    cache, log = _log_two_builds(tmp_path, monkeypatch, forces)
+    rerun = tmp_path / "rerun"
+    rerun.mkdir()
+    (rerun / HIT_LOG).write_text(log.read_text())
+    (rerun / "fe-cache").symlink_to(cache)
+    folder = store.write_store(store.entries_from_cache(log, cache), tmp_path / "store")
+    assert cli._cold_sample(rerun, 1, folder) is False  # nothing of its own to recompute
+    assert "results store's entries" in capsys.readouterr().out
+    assert cli._cold_sample(rerun, 1) is False  # without the store: recomputed, bit-identical
+    assert "bit-identical" in capsys.readouterr().out
+    # a cache file that is not the store's entry under its key is found, not left out
+    (entry,) = [e for e in cc.read_log(log) if e["kind"] == "nonlinear"]
+    np.save(cache / entry["file"], np.load(cache / entry["file"]) * (1 + 1e-12))
+    assert cli._cold_sample(rerun, 1, folder) is True
+    assert "DIFFERS from the results store's entry" in capsys.readouterr().out
+    # a re-run that read no non-linear task has nothing to show: it fails
+    (rerun / HIT_LOG).write_text("")
+    assert cli._cold_sample(rerun, 1, folder) is True
+    assert "read no non-linear FE task" in capsys.readouterr().out

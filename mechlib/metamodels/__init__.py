@@ -6,7 +6,8 @@ force range; :mod:`.scoring`, held-out errors, k-fold cross-validation, latency;
 space-filling training designs; :mod:`.inverse`, forces for a desired pose by Newton;
 :mod:`.study`, learning curves, error budgets and the inverse checked against the truth). Its
 modules import only each other (in that order: linear, quadratic, gaussian_process, metrics,
-families, scoring, inverse, study; designs imports none), :mod:`mechlib.params`, NumPy, SciPy,
+families, scoring, inverse, study; designs imports none), :mod:`mechlib.params`,
+:mod:`mechlib.blas` (one BLAS thread), :mod:`mechlib.memo` (a fit remembered), NumPy, SciPy,
 scikit-learn, threadpoolctl and pandas; never the chapters' packages (``mechlib.hexflex``,
 ``mechlib.fivebar`` …), plotting or ``mechlib.pipeline``.
 """

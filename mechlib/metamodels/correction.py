@@ -19,8 +19,8 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.metamodels.families import (
     Surrogate,
     check_forces,
@@ -53,7 +53,7 @@ def corrected(low: Surrogate, forces: object, poses: object, seed: int = 0) -> S
     """
     x = check_forces(low, forces)
     y = check_matrix("poses", poses, shape=(x.shape[0], low.n_outputs))
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         miss = y - predict_array(low, x)
     gp = fit_surrogate("gp", x, miss, amplitude=low.amplitude, seed=seed)
 
@@ -92,7 +92,7 @@ def cross_validate_corrected(
     """
     x = check_forces(low, forces)
     y = check_matrix("poses", poses, shape=(x.shape[0], low.n_outputs))
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         base = predict_array(low, x)
     cv = cross_validate("gp", x, y - base, amplitude=low.amplitude, folds=folds, seed=seed)
     out = error_metrics(y, base + cv["predicted"])
@@ -138,7 +138,7 @@ def corrected_curve(
     for n in sizes:
         n = check_int("sizes", n, low=2, high=len(y_t))
         gp = fit_surrogate("gp", x_t[:n], y_t[:n] - low_t[:n], amplitude=amplitude, seed=seed)
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             guess = low_v + predict_array(gp, check_forces(gp, x_v))
         out.append(error_metrics(y_v, guess)["max_range_pct"].max())
     return np.array(out)
@@ -213,7 +213,7 @@ def indicator_correction(
 
     def predicted(new: np.ndarray) -> np.ndarray:
         u = check_matrix("features", new, shape=(None, x.shape[1])) / scale
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             return predict_array(gp, u)
 
     return predicted

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 from scipy.stats import qmc
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.metamodels.families import Surrogate, predict_array
 from mechlib.metamodels.realtime import DISTILLED
 from mechlib.params import check_int
@@ -73,7 +73,7 @@ def to_dict(
     coef = np.asarray(model.state["coef"], dtype=float)
     u = qmc.Sobol(d=model.n_inputs, scramble=True, seed=seed).random(CHECK_VECTORS)
     forces = np.round(model.amplitude * (2 * u - 1), 6)
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         poses = predict_array(model, forces)
     return {
         "format": FORMAT,

@@ -53,8 +53,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
+from mechlib.memo import array_memo
 from mechlib.metamodels import linear, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
@@ -214,6 +215,7 @@ def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
     return {"exponents": exps, "coef": coef}
 
 
+@array_memo(maxsize=32)  # a chapter fits some families to the same runs twice
 def fit_surrogate(
     family: str,
     forces: object,
@@ -263,7 +265,7 @@ def fit_surrogate(
     if top > amplitude * (1 + RANGE_RTOL):
         raise ValueError(f"amplitude must be >= max |forces| = {top} N, got {amplitude}")
     u = x / amplitude
-    with threadpool_limits(limits=1, user_api="blas"):  # same digits with any BLAS threads
+    with one_thread():  # same digits with any BLAS threads
         if family == "linear":
             state = {"S": linear.fit_linear(x, y)["S"]}
         elif family == "quadratic":
@@ -344,7 +346,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
     """Predictions for an already checked (runs, inputs) float array (no range check).
 
     The fast path of :func:`predict`, for latency measurements and Newton iterations; call it
-    inside ``threadpool_limits(limits=1, user_api="blas")`` for thread-independent digits.
+    inside ``one_thread()`` for thread-independent digits.
 
     Parameters
     ----------
@@ -393,5 +395,5 @@ def predict(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) 
         Wrong shape, or a force outside the validated range (see :func:`check_forces`).
     """
     x = check_forces(surrogate, forces, extrapolate=extrapolate)
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         return predict_array(surrogate, x)

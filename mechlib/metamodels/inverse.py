@@ -8,8 +8,8 @@ linear inverse ``τ₀ = J(0)⁻¹ (ψ − f(0))`` — Eq 9 when the meta-model 
 from __future__ import annotations
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.metamodels.families import Surrogate, predict_array
 from mechlib.params import check_float, check_int, check_matrix
 
@@ -54,7 +54,7 @@ def jacobian(surrogate: Surrogate, forces: np.ndarray) -> np.ndarray:
     h = FD_STEP * surrogate.amplitude
     steps = np.concatenate([h * np.eye(k), -h * np.eye(k)])  # (2k, inputs)
     pts = (x[:, None, :] + steps[None, :, :]).reshape(-1, k)
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         y = predict_array(surrogate, pts).reshape(len(x), 2 * k, -1)
     return np.transpose((y[:, :k] - y[:, k:]) / (2 * h), (0, 2, 1))
 
@@ -104,7 +104,7 @@ def invert(
     max_iter = check_int("max_iter", max_iter, low=1)
     zero = np.zeros((1, surrogate.n_inputs))
     j0 = jacobian(surrogate, zero)[0]
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         f0 = predict_array(surrogate, zero)[0]
         scale = np.linalg.norm(j0, axis=1) * surrogate.amplitude
         tau = np.linalg.solve(j0, (psi - f0).T).T

@@ -18,8 +18,8 @@ import itertools
 
 import numpy as np
 from scipy.stats import qmc
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.metamodels.families import (
     Surrogate,
     legendre_products,
@@ -88,7 +88,7 @@ def _fit_legendre(teacher: Surrogate, u: np.ndarray, y: np.ndarray, degree: int)
         raise ValueError(
             f"n_samples must exceed the {len(exps)} terms of degree {degree}, got {len(u)}"
         )
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         coef, *_ = np.linalg.lstsq(legendre_products(u, exps), y, rcond=None)
     name = teacher.state.get("name", teacher.family)
     state = {"exponents": exps, "coef": coef, "teacher": name}
@@ -98,12 +98,12 @@ def _fit_legendre(teacher: Surrogate, u: np.ndarray, y: np.ndarray, degree: int)
 def _teach(teacher: Surrogate, n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """A Sobol' sample of ``n`` points of the teacher's box (scaled) and its poses there."""
     u = _sample(teacher.n_inputs, n, check_int("seed", seed, low=0))
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         return u, predict_array(teacher, teacher.amplitude * u)
 
 
 def _error_pct(student: Surrogate, u: np.ndarray, y: np.ndarray) -> float:
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         guess = predict_array(student, student.amplitude * u)
     return float(error_metrics(y, guess)["max_range_pct"].max())
 

@@ -7,8 +7,8 @@ from collections.abc import Sequence
 
 import numpy as np
 from sklearn.model_selection import KFold
-from threadpoolctl import threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.metamodels.families import (
     FAMILIES,
     Surrogate,
@@ -164,7 +164,7 @@ def latency_us(
     repeats = check_int("repeats", repeats, low=1, high=10_000)
     n_single = min(len(x), SINGLE_CALLS)
     batched, single = [], []
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_thread():
         predict_array(surrogate, x[:1])  # warm-up (imports, caches)
         for _ in range(repeats):
             t0 = time.perf_counter()

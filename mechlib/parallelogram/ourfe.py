@@ -16,7 +16,7 @@ import numpy as np
 
 from mechlib.compliant.spec import MechanismSpec
 from mechlib.hexflex.campaign import executors
-from mechlib.hexflex.campaign.experiments import FailedRun, run_experiments, run_keeping_failures
+from mechlib.hexflex.campaign.experiments import FailedRun, run_keeping_failures
 from mechlib.parallelogram import published as pub
 from mechlib.parallelogram.comparison import applied_loads, as_rows, fe_poses
 from mechlib.params import check_matrix
@@ -95,12 +95,25 @@ def solve(
 ) -> np.ndarray:
     """Our non-linear FE's stage poses (u_x/L, u_y/L, φ) (n, 3) at normalised loads (n, 3):
     a campaign of ``spec``'s model (``steps`` load steps a run, ``workers`` processes, the FE
-    cache ``cache_dir``), the pose the rigid registration of the stage's nodes."""
-    with executors.executor(workers) as pool:
-        poses = run_experiments(spec, to_newton(loads), kind="nonlinear", steps=steps,
-                                pose="rotvec", executor=pool, cache_dir=cache_dir,
-                                progress=False)  # fmt: skip
-    return normalised(poses)
+    cache ``cache_dir``), the pose the rigid registration of the stage's nodes.
+
+    Raises
+    ------
+    RuntimeError
+        When a run fails — does not converge, or its task raised — (:func:`solve_keeping`
+        leaves such runs out instead), naming each with its loads, last relative residual and
+        the reason its campaign gave.
+    """
+    _, poses, failures = solve_keeping(spec, loads, steps=steps, workers=workers,
+                                       cache_dir=cache_dir)  # fmt: skip
+    if failures:
+        runs = "; ".join(
+            f"row {f.index} (loads {f.forces} in N and N·mm, last relative residual "
+            f"{f.residual:.3g}): {f.reason}"
+            for f in failures
+        )
+        raise RuntimeError(f"{len(failures)} run(s) failed: {runs}")
+    return poses
 
 
 def solve_keeping(
@@ -111,8 +124,8 @@ def solve_keeping(
     workers: int = 1,
     cache_dir: Path | None = None,
 ) -> tuple[np.ndarray, np.ndarray, list[FailedRun]]:
-    """:func:`solve` for a design whose statistics must leave a run that did not converge out,
-    and say so.
+    """Our non-linear FE's stage poses at normalised loads (as :func:`solve`), a run that does
+    not converge left out and listed.
 
     Returns
     -------

@@ -28,9 +28,15 @@ def restore_malloc() -> bool:
     """Set glibc's trim and mmap thresholds to :data:`TRIM_BYTES` and :data:`MMAP_BYTES` and
     limit BLAS to one thread in this process; ``False`` where there is no glibc (nothing to
     undo there)."""
-    from threadpoolctl import threadpool_limits
+    import numpy  # noqa: F401  (NumPy's and SciPy's BLAS loaded before they are limited)
+    import scipy.linalg  # noqa: F401
+    from threadpoolctl import OpenBLASController, threadpool_limits
 
     threadpool_limits(limits=1, user_api="blas")
+    # a limit set outside a ``with`` makes this thread OpenBLAS's only "controlling thread" in
+    # threadpoolctl: a Dask worker runs its tasks in other threads, whose own limits
+    # (``mechlib.blas.one_thread``) would then do nothing; give the control back
+    OpenBLASController.clear_controlling_thread(force=True)
     name = ctypes.util.find_library("c")
     try:
         libc = ctypes.CDLL(name)
@@ -62,7 +68,5 @@ def dask_setup(worker: object = None) -> None:
     """Preload hook (``--preload mechlib.hexflex.campaign.daskworker``): the FE stack imported
     before the first task, and :func:`restore_malloc`."""
     # SfePy and the FE models, imported before the first task
-    import mechlib.hexflex.fe.lean
-    import mechlib.hexflex.fe.nonlinear  # noqa: F401
 
     restore_malloc()
