@@ -46,8 +46,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
-from threadpoolctl import ThreadpoolController, threadpool_limits
 
+from mechlib.blas import one_thread
 from mechlib.hexflex.rom import basis as rb
 from mechlib.hexflex.rom import ecsw
 from mechlib.hexflex.rom.tensors import PolynomialForce, polynomial_force
@@ -72,9 +72,6 @@ N_TRAINING = 24
 #: ROM solves the Newton predictor is fitted to (cubic in the forces: 83 coefficients; degree 4
 #: took as many iterations, degree 2 4.6 a pose on the identified model).
 N_PREDICT = 600
-#: One scan of the loaded BLAS libraries per process: ``threadpool_limits`` rescans them at every
-#: call (≈ 2 ms, more than a reduced solve); the online path limits BLAS through this instead.
-_BLAS = ThreadpoolController()
 
 
 @dataclass
@@ -213,7 +210,7 @@ class ReducedOrderModel:
         elif n_pod is not None:
             raise ValueError(f"n_pod = {n_pod} needs snapshots (none given)")
         info: dict[str, float] = {}
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_thread():
             t0 = time.perf_counter()
             modes, derivatives = rb.static_basis(solver)
             parts = [rb.unit(modes)] + ([rb.unit(derivatives)] if modal_derivatives else [])
@@ -294,7 +291,7 @@ class ReducedOrderModel:
         f = self.check_design(design)
         target = f @ self.loads.T
         q = rb.monomials(f) @ self.predictor
-        with _BLAS.limit(limits=1, user_api="blas"):
+        with one_thread():
             residual = self._newton(q, target)
             for steps in CONTINUATION:
                 redo = np.flatnonzero(~(residual <= TOL))  # NaN: not converged
