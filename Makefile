@@ -157,7 +157,7 @@ test-first: $(STAMP)
 	$(MAKE) --no-print-directory check-records
 
 test-rerun: test-first
-	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments
+	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments FIRST_RUN=$(BUILD)
 	$(MAKE) --no-print-directory determinism-check \
 	  $(if $(wildcard $(STORE)/manifest.json),DETERMINISM_ARGS='--store-checked $(STORE)')
 
@@ -222,10 +222,13 @@ store: $(STAMP)
 
 # every notebook executed again into $(RERUN), cold (an FE cache of its own) or, with
 # FE_CACHE_FROM=<folder>, from a copy of that FE cache: `make test` requires its records to be
-# byte-identical to the first run's, and recomputes a seeded sample of the cached FE tasks cold
+# byte-identical to the first run's, and recomputes a seeded sample of the cached FE tasks cold;
+# with FIRST_RUN=<build folder>, each chapter takes its inputs from the first run's records (the
+# comparison requires them identical to the re-run's) and none waits for another
 rerun: $(STAMP)
 	$(REQUIRE_CI)
-	$(PIPELINE) rerun --out $(abspath $(RERUN)) $(if $(FE_CACHE_FROM),--fe-cache-from $(FE_CACHE_FROM))
+	$(PIPELINE) rerun --out $(abspath $(RERUN)) $(if $(FE_CACHE_FROM),--fe-cache-from $(FE_CACHE_FROM)) \
+	  $(if $(FIRST_RUN),--first-run $(FIRST_RUN))
 
 # --- one notebook with new parameters ---------------------------------------------------------
 run: $(STAMP) $(STORE_SEEDED)

@@ -48,7 +48,7 @@ def _update(args: argparse.Namespace) -> int:
 
 def _rerun(args: argparse.Namespace) -> int:
     try:
-        rerun(args.notebooks, args.out, fe_cache_from=args.fe_cache_from)
+        rerun(args.notebooks, args.out, fe_cache_from=args.fe_cache_from, first_run=args.first_run)
     except RuntimeError as err:
         print(err, file=sys.stderr)
         return 1
@@ -169,6 +169,12 @@ def parser() -> argparse.ArgumentParser:
         "--fe-cache-from",
         type=Path,
         help="start from a copy of this FE cache (FE tasks read, logged, not solved)",
+    )
+    again.add_argument(
+        "--first-run",
+        type=Path,
+        help="the first run's build folder: chapters' inputs from its records/ (none waits for "
+        "another), longest first by its executed/ notebooks' times",
     )
     again.set_defaults(func=_rerun)
     for name, (_, what) in DELEGATED.items():

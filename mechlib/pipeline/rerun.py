@@ -41,6 +41,7 @@ def rerun(
     python: str = sys.executable,
     fe_cache_from: Path | None = None,
     jobs: int = JOBS,
+    first_run: Path | None = None,
 ) -> None:
     """Execute every notebook again into ``out`` (emptied first).
 
@@ -55,7 +56,14 @@ def rerun(
     ``make test`` does both, and saves the second run's FE solves). Notebooks
     run ``jobs`` at a time in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each
     after the chapters whose records give it inputs, read strictly from the re-run's own records
-    (``$MECHLIB_RECORDS_STRICT``), never the first run's.
+    (``$MECHLIB_RECORDS_STRICT``).
+
+    With ``first_run`` (the first run's build folder, holding ``records/`` and ``executed/``), a
+    chapter's inputs are read strictly from the first run's records instead, so no chapter waits
+    for another: the comparison that follows requires those records identical to the re-run's
+    own, so every chapter is still checked on the inputs the re-run computed. The chapters then
+    start longest first, by the time papermill recorded for each in the first run's executed
+    notebooks (:func:`longest_first`), which keeps both cores busy to the end.
 
     Raises
     ------
@@ -79,7 +87,14 @@ def rerun(
         variables[FE_LOG_ENV] = str(out / HIT_LOG)
     env = dict(os.environ, **variables)
     pending = in_order(Path(notebooks).glob("*.ipynb"))
-    here = {nb.stem for nb in pending}  # an input chapter not in the folder is not waited for
+    inputs = out / "records"
+    if first_run is not None:
+        inputs = Path(first_run).resolve() / "records"
+        if not inputs.is_dir():
+            raise RuntimeError(f"first_run must hold the first run's records/, got {first_run}")
+        pending = longest_first(pending, Path(first_run) / "executed")
+    # an input chapter not in the folder is not waited for, nor any when the inputs are given
+    here = {nb.stem for nb in pending} if first_run is None else set()
     done: set[str] = set()
     procs: dict[str, subprocess.Popen] = {}  # the chapters executing, to stop on a failure
     stop = threading.Event()  # set on a failure: a chapter not yet started does not start
@@ -90,7 +105,7 @@ def rerun(
                 if len(running) >= jobs:
                     break
                 pending.remove(nb)
-                running[pool.submit(_execute, nb, out, env, python, procs, stop)] = nb
+                running[pool.submit(_execute, nb, out, inputs, env, python, procs, stop)] = nb
             finished, _ = cf.wait(running, return_when=cf.FIRST_COMPLETED)
             for fut in finished:
                 nb = running.pop(fut)
@@ -103,15 +118,31 @@ def rerun(
                 done.add(nb.stem)
 
 
+def longest_first(notebooks: list[Path], executed: Path) -> list[Path]:
+    """``notebooks`` ordered by the seconds papermill recorded for each in the executed copies
+    of folder ``executed``, longest first (one without a recorded time first of all, in the
+    given order: its length is unknown)."""
+
+    def seconds(nb: Path) -> float:
+        try:
+            meta = json.loads((Path(executed) / nb.name).read_text())["metadata"]["papermill"]
+            return float(meta["duration"])
+        except (OSError, ValueError, KeyError, TypeError):
+            return float("inf")
+
+    return sorted(notebooks, key=seconds, reverse=True)
+
+
 def _execute(
     nb: Path,
     out: Path,
+    inputs_from: Path,
     env: dict[str, str],
     python: str,
     procs: dict[str, subprocess.Popen],
     stop: threading.Event,
 ) -> None:
-    inputs = input_arguments(nb.stem, out / "records", strict=True)
+    inputs = input_arguments(nb.stem, inputs_from, strict=True)
     cmd = papermill_command(nb, out / nb.name, inputs, python=python)
     for _attempt in range(KERNEL_START_ATTEMPTS):
         with _STARTING:  # a failure seen meanwhile stops this chapter before its process starts
