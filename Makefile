@@ -53,6 +53,7 @@ help:
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
 	@echo "make rerun       execute every notebook again, cold, into build/rerun (make test compares records)"
 	@echo "                 FE_CACHE_FROM=build/cache/experiments: FE results from a copy of that cache"
+	@echo "                 FIRST_RUN=build: chapters' inputs from the first run's records, longest first"
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
@@ -139,7 +140,7 @@ test: $(STAMP)
 	@# book, its checks and the PDF once the first run's notebooks are done and their records
 	@# checked, and beside them, at a lower priority, the work nothing waits on: the unit tests and
 	@# the store's cold sample, from the start. The chain is the longest path; the low-priority
-	@# work fills the cores it leaves idle (two chapters waiting on one, a re-run on its inputs).
+	@# work fills the cores it leaves idle (two chapters waiting on one, the last chapters' tail).
 	@# (The book's checks keep the normal priority: the browser's pages have timeouts.)
 	$(MAKE) --no-print-directory $(STORE_SEEDED)
 	$(MAKE) --no-print-directory -j4 test-rerun test-book test-side

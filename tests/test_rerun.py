@@ -56,3 +56,7 @@ def test_a_rerun_given_the_first_run_takes_its_inputs_and_starts_longest_first(
     assert [p.stem for p in order] == ["a", "virtual_experiments", "hexflex_model"]
     with pytest.raises(RuntimeError, match="first_run"):
         rerun(notebooks, tmp_path / "out", first_run=tmp_path / "nowhere")
+    (first / "records" / "hexflex_model.json").unlink()  # refused before the re-run is removed
+    with pytest.raises(RuntimeError, match="lack an input of virtual_experiments"):
+        rerun(notebooks, tmp_path / "out", first_run=first)
+    assert (tmp_path / "out" / "records" / "hexflex_model.json").exists()

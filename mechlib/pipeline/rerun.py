@@ -19,6 +19,7 @@ from mechlib.paths import FE_CACHE_ENV, FE_LOG_ENV, RECORDS_ENV, RECORDS_STRICT_
 from mechlib.pipeline.chapters import in_order, upstream
 from mechlib.pipeline.execute import (
     KERNEL_START_ATTEMPTS,
+    chapter_inputs,
     input_arguments,
     kernel_died_at_start,
     papermill_command,
@@ -73,6 +74,20 @@ def rerun(
     """
     jobs = check_int("jobs", jobs, low=1, high=16)
     out = Path(out).resolve()  # absolute: the kernels run in the notebooks' folder
+    pending = in_order(Path(notebooks).glob("*.ipynb"))
+    inputs = out / "records"
+    if first_run is not None:  # checked before anything is removed or started
+        inputs = Path(first_run).resolve() / "records"
+        if not inputs.is_dir():
+            raise RuntimeError(f"first_run must hold the first run's records/, got {first_run}")
+        for nb in pending:  # every chapter's inputs there, before the longest ones start
+            try:
+                chapter_inputs(nb.stem, inputs, strict=True)
+            except (OSError, KeyError) as err:
+                raise RuntimeError(
+                    f"the first run's records lack an input of {nb.stem}: {err}"
+                ) from err
+        pending = longest_first(pending, Path(first_run) / "executed")
     shutil.rmtree(out, ignore_errors=True)
     (out / "records").mkdir(parents=True)
     variables = {
@@ -86,13 +101,6 @@ def rerun(
         shutil.copytree(fe_cache_from, out / "fe-cache")
         variables[FE_LOG_ENV] = str(out / HIT_LOG)
     env = dict(os.environ, **variables)
-    pending = in_order(Path(notebooks).glob("*.ipynb"))
-    inputs = out / "records"
-    if first_run is not None:
-        inputs = Path(first_run).resolve() / "records"
-        if not inputs.is_dir():
-            raise RuntimeError(f"first_run must hold the first run's records/, got {first_run}")
-        pending = longest_first(pending, Path(first_run) / "executed")
     # an input chapter not in the folder is not waited for, nor any when the inputs are given
     here = {nb.stem for nb in pending} if first_run is None else set()
     done: set[str] = set()

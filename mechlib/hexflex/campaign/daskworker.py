@@ -67,7 +67,8 @@ class CampaignWorker(_plugin_base()):
 def dask_setup(worker: object = None) -> None:
     """Preload hook (``--preload mechlib.hexflex.campaign.daskworker``): the FE stack imported
     before the first task, and :func:`restore_malloc`."""
-    # SfePy and the FE models, imported before the first task
+    # the FE core and the HexFlex's models (SciPy, threadpoolctl; SfePy itself is imported by
+    # the first task that builds a model), before the first task
     import mechlib.fe.nonlinear
     import mechlib.hexflex.fe.lean  # noqa: F401
 

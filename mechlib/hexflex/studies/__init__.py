@@ -5,6 +5,7 @@ against Timoshenko beam theory), :mod:`.cantilever` (the non-linear solver again
 :mod:`.elastica`), :mod:`.linearity` (where the linear model stops holding), :mod:`.departure` (the
 non-linear departure split by parity in the load), :mod:`.family` (members of Eq 8's family at
 other thicknesses) and :mod:`.leanmesh` (the lean mesh against the default one on non-linear
-runs). Imports :mod:`mechlib.hexflex.fe`, :mod:`mechlib.hexflex.campaign` and the top
-of :mod:`mechlib.hexflex`; nothing below imports a study.
+runs). Imports the solid FE core (:mod:`mechlib.fe`, :mod:`mechlib.blas`),
+:mod:`mechlib.hexflex.fe`, :mod:`mechlib.hexflex.campaign` and the top of :mod:`mechlib.hexflex`;
+nothing below imports a study.
 """
