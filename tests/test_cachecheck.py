@@ -83,6 +83,26 @@ def test_a_sample_smaller_than_the_models_draws_from_both_mechanisms() -> None:
         assert sorted(e["spec"].startswith('{"mechanism"') for e in picked) == [False, True]
 
 
+def test_the_stores_sample_is_uniform_over_its_tasks_whatever_their_model() -> None:
+    from types import SimpleNamespace
+
+    # one model holds 90 % of the tasks: it gets about 90 % of the draws (spread over models,
+    # it would get a third), so a wrong share anywhere is missed with at most (1 - p)^n
+    specs = ["big"] * 900 + ["small"] * 50 + ["tiny"] * 50
+    entries = [
+        SimpleNamespace(key=f"{i:04d}", kind="nonlinear", spec=s) for i, s in enumerate(specs)
+    ]
+    draws = [cc.sample_uniform(entries, {"nonlinear": 10}, seed) for seed in range(200)]
+    assert all(len({e.key for e in d}) == 10 for d in draws)
+    share = np.mean([e.spec == "big" for d in draws for e in d])
+    assert 0.87 < share < 0.93  # 2000 draws: standard error 0.0067
+    # seeded, whatever order the entries come in; all of a kind when fewer than asked
+    assert draws[3] == cc.sample_uniform(entries[::-1], {"nonlinear": 10}, 3)
+    assert len(cc.sample_uniform(entries, {"nonlinear": 5000, "linear": 2}, 0)) == 1000
+    with pytest.raises(ValueError, match="per_kind"):
+        cc.sample_uniform(entries, {"nonlinear": -1}, 0)
+
+
 def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> None:
     from mechlib.hexflex.campaign.store import Entry
 

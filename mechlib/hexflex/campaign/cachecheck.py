@@ -138,6 +138,35 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
     return [entries[i] for i in sorted(chosen)]
 
 
+def sample_uniform(entries: list, per_kind: dict[str, int], seed: int) -> list:
+    """A seeded sample of ``per_kind[kind]`` tasks of each kind (all if fewer), drawn uniformly
+    without replacement from all the tasks of that kind whatever their model, in key order.
+
+    Were a share ``p`` of the tasks of a kind wrong, ``n`` draws would miss every wrong one with
+    probability ``C(N − pN, n) / C(N, n) ≤ (1 − p)^n`` — the results store's cold sample, whose
+    stated chance of a miss is that bound (:func:`sample` spreads its draws over the models
+    instead, so a wrong share inside one model may be drawn less often than that).
+
+    Parameters
+    ----------
+    entries : list
+        Objects with ``key`` and ``kind`` attributes (:class:`~.store.Entry`).
+    per_kind : dict
+        Tasks to draw per kind.
+    seed : int
+        Seed of the draw.
+    """
+    rng = np.random.default_rng(seed)
+    chosen: list = []
+    for kind in KINDS:
+        n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
+        pool = sorted((e for e in entries if e.kind == kind), key=lambda e: e.key)
+        if n and pool:
+            picked = rng.choice(len(pool), size=min(n, len(pool)), replace=False)
+            chosen.extend(pool[i] for i in sorted(picked.tolist()))
+    return chosen
+
+
 def check_sample(
     log: Path,
     cache_dir: Path,
@@ -168,7 +197,8 @@ def check_entries(
     entries: list, per_kind: dict[str, int], seed: int, workers: int = 1
 ) -> list[CacheCheck]:
     """Recompute a seeded sample of results-store entries
-    (:class:`mechlib.hexflex.campaign.store.Entry`) and compare each with its stored poses.
+    (:class:`mechlib.hexflex.campaign.store.Entry`), drawn uniformly over each kind's tasks
+    (:func:`sample_uniform`), and compare each with its stored poses.
 
     Parameters
     ----------
@@ -186,8 +216,7 @@ def check_entries(
     list of CacheCheck
         One per sampled task.
     """
-    logged = [{"file": f"{e.key}.npy", "kind": e.kind, "spec": e.spec, "entry": e} for e in entries]
-    picked = [d["entry"] for d in sample(logged, per_kind, seed)]
+    picked = sample_uniform(entries, per_kind, seed)
     return _recompute(
         [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked], workers
     )
