@@ -101,6 +101,13 @@ def test_the_stores_sample_is_uniform_over_its_tasks_whatever_their_model() -> N
     assert len(cc.sample_uniform(entries, {"nonlinear": 5000, "linear": 2}, 0)) == 1000
     with pytest.raises(ValueError, match="per_kind"):
         cc.sample_uniform(entries, {"nonlinear": -1}, 0)
+    # two mechanisms: each drawn from in proportion, rounded up (95 of 1000 tasks: 1 of 10)
+    layout = '{"mechanism": {"mesh_size": 10}}'
+    both = entries[:905] + [SimpleNamespace(key=f"m{i:03d}", kind="nonlinear", spec=layout)
+                            for i in range(95)]  # fmt: skip
+    for seed in range(20):
+        got = cc.sample_uniform(both, {"nonlinear": 10}, seed)
+        assert sum(e.spec == layout for e in got) == 1 and len(got) == 11  # ceil 9.05 + ceil 0.95
 
 
 def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> None:

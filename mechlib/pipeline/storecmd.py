@@ -41,9 +41,9 @@ WRONG_SHARE = 0.1
 def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     """One Markdown list line for the landing page: where this build's FE runs came from and,
     when from the store ``folder``, what its cold sample implies — the chance that
-    ``COLD_NONLINEAR`` runs drawn uniformly, without replacement, from a store whose share
-    ``wrong_share`` of runs is wrong miss every wrong one, at most
-    ``(1 − wrong_share)^COLD_NONLINEAR``
+    at least ``COLD_NONLINEAR`` runs drawn uniformly, without replacement, within each
+    mechanism family in proportion to its runs, from a store whose share ``wrong_share`` of runs
+    is wrong miss every wrong one, at most ``(1 − wrong_share)^COLD_NONLINEAR``
     (:func:`~mechlib.hexflex.campaign.cachecheck.sample_uniform`).
 
     Raises
@@ -77,8 +77,9 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
         f"{runs.get('nonlinear', 0)} geometrically non-linear runs and {runs.get('linear', 0)} "
         f"linear load cases of this FE code, {made}. They are the finite-element results behind "
         f"{STORE_USERS}; every table, figure and number is computed from them when the book is "
-        f"built. A sample of {COLD_NONLINEAR} stored non-linear runs and {COLD_LINEAR} blocks of "
-        f"linear runs, drawn at random from all of them anew for each commit, is recomputed "
+        f"built. A sample of at least {COLD_NONLINEAR} stored non-linear runs and {COLD_LINEAR} "
+        f"blocks of linear runs, drawn at random anew for each commit from each mechanism's "
+        f"runs in proportion to their number, is recomputed "
         f"cold whenever the book is checked and must agree within {AGREE_RTOL:g} of each run's "
         f"largest pose component: were {wrong_share:.0%} of the stored runs wrong, such a "
         f"sample would miss every one of them with probability at most {miss:.1%}."

@@ -139,20 +139,25 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
 
 
 def sample_uniform(entries: list, per_kind: dict[str, int], seed: int) -> list:
-    """A seeded sample of ``per_kind[kind]`` tasks of each kind (all if fewer), drawn uniformly
-    without replacement from all the tasks of that kind whatever their model, in key order.
+    """A seeded sample of at least ``per_kind[kind]`` tasks of each kind (all if fewer), drawn
+    uniformly without replacement within each mechanism family (:func:`~.store.family`: the
+    HexFlex, the compliant layouts), whatever their model, ``ceil(n N_f / N)`` from a family
+    holding ``N_f`` of the kind's ``N`` tasks — so every family is drawn from, and the total
+    exceeds ``n`` by less than the number of families. In key order.
 
-    Were a share ``p`` of the tasks of a kind wrong, ``n`` draws would miss every wrong one with
-    probability ``C(N − pN, n) / C(N, n) ≤ (1 − p)^n`` — the results store's cold sample, whose
-    stated chance of a miss is that bound (:func:`sample` spreads its draws over the models
-    instead, so a wrong share inside one model may be drawn less often than that).
+    Were a share ``p`` of the tasks of a kind wrong, the sample would miss every wrong one with
+    probability at most ``(1 − p)^n``: within a family the draws miss its share ``p_f`` with
+    ``C(N_f − p_f N_f, n_f) / C(N_f, n_f) ≤ (1 − p_f)^(n_f)``, ``n_f ≥ n N_f / N``, and
+    ``Σ (N_f / N) log(1 − p_f) ≤ log(1 − p)`` (the logarithm is concave). That bound is the
+    results store's stated chance of a miss; :func:`sample` spreads its draws over the models
+    instead, so a wrong share inside one large model may be drawn far less often.
 
     Parameters
     ----------
     entries : list
-        Objects with ``key`` and ``kind`` attributes (:class:`~.store.Entry`).
+        Objects with ``key``, ``kind`` and ``spec`` attributes (:class:`~.store.Entry`).
     per_kind : dict
-        Tasks to draw per kind.
+        Tasks to draw per kind (at least).
     seed : int
         Seed of the draw.
     """
@@ -160,10 +165,12 @@ def sample_uniform(entries: list, per_kind: dict[str, int], seed: int) -> list:
     chosen: list = []
     for kind in KINDS:
         n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
-        pool = sorted((e for e in entries if e.kind == kind), key=lambda e: e.key)
-        if n and pool:
-            picked = rng.choice(len(pool), size=min(n, len(pool)), replace=False)
-            chosen.extend(pool[i] for i in sorted(picked.tolist()))
+        pool = [e for e in entries if e.kind == kind]
+        for fam in sorted({family(e.spec) for e in pool}) if n else ():
+            tasks = sorted((e for e in pool if family(e.spec) == fam), key=lambda e: e.key)
+            share = -(-n * len(tasks) // len(pool))  # ceil(n N_f / N), exactly in integers
+            picked = rng.choice(len(tasks), size=min(share, len(tasks)), replace=False)
+            chosen.extend(tasks[i] for i in sorted(picked.tolist()))
     return chosen
 
 
