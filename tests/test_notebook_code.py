@@ -44,3 +44,50 @@ def test_the_check_finds_what_it_looks_for() -> None:
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=lambda p: p.stem)
 def test_notebooks_define_nothing_and_glue_only_through_the_recorder(notebook) -> None:
     assert definitions_and_glue(_code(notebook)) == []
+
+
+#: Recorder methods that return what they record (``save`` and ``add_data`` return nothing shown)
+RETURNING = ("value", "text", "claim", "timing")
+
+
+def _silenced(source: str, node: ast.stmt) -> bool:
+    """Whether a ``;`` follows the statement ``node`` on its last line (IPython shows nothing)."""
+    line = source.splitlines()[node.end_lineno - 1]  # type: ignore[operator]
+    return line[node.end_col_offset :].lstrip().startswith(";")
+
+
+def echoed_records(cells: list[str]) -> list[str]:
+    """Code cells whose last statement is a bare call on the Recorder (``rec.value(...)``,
+    ``rec.claim(...)``): the kernel would print what it returns on the page."""
+    found = []
+    for i, source in enumerate(cells):
+        body = ast.parse(source).body
+        last = body[-1] if body else None
+        if (
+            isinstance(last, ast.Expr)
+            and isinstance(last.value, ast.Call)
+            and isinstance(last.value.func, ast.Attribute)
+            and isinstance(last.value.func.value, ast.Name)
+            and last.value.func.value.id == "rec"
+            and last.value.func.attr in RETURNING
+            and not _silenced(source, last)
+        ):
+            found.append(f"code cell {i + 1}: ends with rec.{last.value.func.attr}(...)")
+    return found
+
+
+def test_the_echo_check_finds_a_cell_ending_with_a_record() -> None:
+    cells = [
+        "x = 1\nrec.value('k', x,\n          atol=0)  # c",
+        "rec.claim('c');  # c",
+        "rec.save()",
+        "",
+    ]
+    assert echoed_records(cells) == ["code cell 1: ends with rec.value(...)"]
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS, ids=lambda p: p.stem)
+def test_no_cell_prints_what_a_record_returns(notebook) -> None:
+    cells = json.loads(notebook.read_text())["cells"]
+    code = ["".join(c["source"]) for c in cells if c["cell_type"] == "code"]
+    assert echoed_records(code) == []

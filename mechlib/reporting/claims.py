@@ -258,7 +258,7 @@ def at_most(
         label,
         (ref,),
         lambda v: float(_num(v).max()) <= limit,
-        lambda v: f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(limit, unit, 'g')})",
+        lambda v: f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(limit, unit, '.4g')})",
     )
 
 
@@ -270,7 +270,7 @@ def within(label: str, ref: Ref, limit: Ref, unit: str, what: str = "largest") -
         (ref, limit),
         lambda v, lim: float(_num(v).max()) <= float(lim),
         lambda v, lim: (
-            f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(float(lim), unit, 'g')})"
+            f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(float(lim), unit, '.4g')})"
         ),
     )
 
@@ -283,7 +283,7 @@ def each_within(label: str, ref: Ref, limits: Ref, unit: str) -> Test:
         (ref, limits),
         lambda v, lim: bool(np.all(_num(v) <= _num(lim))),
         lambda v, lim: "; ".join(
-            f"{_q(a, unit)} (at most {_q(b, unit, 'g')})"
+            f"{_q(a, unit)} (at most {_q(b, unit, '.4g')})"
             for a, b in zip(_num(v).ravel(), _num(lim).ravel(), strict=True)
         ),
     )
@@ -301,7 +301,7 @@ def at_least(
         (ref,),
         lambda v: float(getattr(_num(v), reduce)()) >= limit,
         lambda v: (
-            f"{what} {float(getattr(_num(v), reduce)()):.3g} {unit} (at least {limit:g} {unit})"
+            f"{what} {float(getattr(_num(v), reduce)()):.3g} {unit} (at least {limit:.4g} {unit})"
         ),
     )
 
