@@ -164,6 +164,10 @@ def test_the_landing_page_says_what_made_the_build(records: dict[str, dict[str, 
 
     made = provenance.text(dt.datetime(2026, 1, 2, 3, 4, tzinfo=dt.UTC))
     assert "built 2026-01-02 03:04 UTC" in made and "numpy " in made and "processor: " in made
+    # the build's profile in the reader's words: the default one is the chapters' own defaults
+    when = dt.datetime(2026, 1, 2, tzinfo=dt.UTC)
+    assert "each chapter's default parameters" in provenance.text(when, "ci")
+    assert "the parameters of profile `full`" in provenance.text(when, "full")
     page = landing.landing_markdown(records, "ci", provenance=made)
     assert made in page and page.index(made) > page.index("## This build")
     assert provenance.commit(Path("/")) == provenance.UNKNOWN  # not a repository

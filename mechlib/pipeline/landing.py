@@ -22,14 +22,13 @@ import numpy as np
 from mechlib.pipeline import bundle as bundle_mod
 from mechlib.pipeline.book import reportpage
 from mechlib.pipeline.findings import FINDINGS, Finding, Quote
+from mechlib.pipeline.provenance import DEFAULT_PROFILE
 from mechlib.reporting import verdicts
 
 #: ``link(page, what, text)`` → a MyST link to the section of chapter ``page`` that shows ``what``.
 Link = Callable[[str, str, str], str]
 #: profile names: what ``notebooks/profiles/<name>`` may be called
 _PROFILE = re.compile(r"^[A-Za-z0-9_-]+$")
-#: the profile of the default build (each notebook's own defaults)
-DEFAULT_PROFILE = "ci"
 #: the record keys that hold a chapter's parameters
 PARAMETER_PREFIX = "parameters."
 

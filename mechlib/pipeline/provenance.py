@@ -16,6 +16,9 @@ from pathlib import Path
 
 from mechlib.paths import REPO_ROOT
 
+#: the profile of the default build (each notebook's own defaults: no override file)
+DEFAULT_PROFILE = "ci"
+
 #: The packages whose versions decide the book's numbers and pages.
 PACKAGES: tuple[str, ...] = (
     "numpy",
@@ -73,7 +76,14 @@ def text(now: dt.datetime | None = None, profile: str = "") -> str:
     """Markdown lines: commit, build date (UTC), profile, Python and package versions, CPU."""
     when = (now or dt.datetime.now(dt.UTC)).strftime("%Y-%m-%d %H:%M UTC")
     listed = ", ".join(f"{k} {v}" for k, v in versions().items())
-    built = f"- commit `{commit()}`, built {when}" + (f", profile `{profile}`" if profile else "")
+    parameters = (
+        ""
+        if not profile
+        else ", each chapter's default parameters"
+        if profile == DEFAULT_PROFILE
+        else f", the parameters of profile `{profile}`"
+    )
+    built = f"- commit `{commit()}`, built {when}{parameters}"
     return "\n".join(
         [
             built,
