@@ -73,6 +73,13 @@ def test_paired_needs_a_majority_and_a_significant_test() -> None:
     )
 
 
+def test_a_boolean_test_says_yes_or_no_of_one_value_and_counts_several() -> None:
+    test = claims.is_true("balanced", "b", "each level equally often")
+    assert test.rule(True) and not test.rule([True, False])
+    assert test.describe(True) == "each level equally often: yes"
+    assert test.describe([True, False, True]) == "each level equally often: 2 of 3 true"
+
+
 def test_the_recorder_records_the_word_and_the_row_of_its_own_claims_only() -> None:
     rec = Recorder("virtual_experiments", paste=lambda name, value: None)
     rec.timing("latency.st_forward_us", 0.8)

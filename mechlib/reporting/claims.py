@@ -357,7 +357,11 @@ def is_true(label: str, ref: Ref, describe: str) -> Test:
         label,
         (ref,),
         lambda v: bool(np.all(np.asarray(v, dtype=bool))),
-        lambda v: f"{describe}: {int(np.sum(v))} of {np.size(v)} true",
+        lambda v: (
+            f"{describe}: {'yes' if np.all(v) else 'no'}"
+            if np.size(v) == 1
+            else f"{describe}: {int(np.sum(v))} of {np.size(v)} true"
+        ),
     )
 
 
