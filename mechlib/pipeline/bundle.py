@@ -57,6 +57,10 @@ records/  every record of this build: key numbers with their tolerances, glued v
           reproduction report's rows (JSON)
 runs/     table2_ours.csv, table4_ours.csv: our FE model's responses to the designs of Tables 2
           and 4 (um, urad), with the forces
+
+Licence: what this reproduction computed is under the MIT licence of its repository (LICENSE,
+(c) 2026 The mechlib reproduction contributors); the values under thesis/ are the thesis's,
+transcribed and cited, and keep its rights.
 """
 #: where the real-time model's plain-Python evaluator goes, beside the model
 EVALUATOR = "data/nonlinear_metamodels/evaluator.py"
