@@ -80,6 +80,17 @@ def test_a_boolean_test_says_yes_or_no_of_one_value_and_counts_several() -> None
     assert test.describe([True, False, True]) == "each level equally often: 2 of 3 true"
 
 
+def test_a_thesis_claim_judged_at_several_budgets_counts_once() -> None:
+    budgets = [c for c in claimlist.CLAIMS if c.startswith("ch3.i.5r.")]
+    assert len(budgets) == 3  # (i) on the 5R at each measurement budget
+    ours = next(c for c in claimlist.CLAIMS if c.startswith("ours."))
+    ids = [*budgets, "ch3.ii.5r." + budgets[0].rsplit(".", 1)[1], ours]
+    assert claimlist.thesis_claims_judged(ids) == (4, 2, 1)
+    assert claimlist.thesis_claims_judged([]) == (0, 0, 0)
+    with pytest.raises(KeyError):
+        claimlist.thesis_claims_judged(["ch3.nonsense"])
+
+
 def test_the_recorder_records_the_word_and_the_row_of_its_own_claims_only() -> None:
     rec = Recorder("virtual_experiments", paste=lambda name, value: None)
     rec.timing("latency.st_forward_us", 0.8)

@@ -224,3 +224,13 @@ def test_the_view_counts_every_campaign_of_a_notebook(tmp_path) -> None:
     view.show({**base, "total": 10, "cached": 10, "to_compute": 0})
     view.show({**base, "total": 5, "cached": 2, "to_compute": 3})
     assert view.tasks == {"total": 15, "cached": 12}
+
+
+def test_the_counts_sentence_weighs_claims_not_rows(records: dict[str, dict[str, Any]]) -> None:
+    rows = verdicts.all_rows(records)
+    ids = [r.fields["claim"] for r in rows if "claim" in r.fields]
+    n_rows, distinct, several = claimlist.thesis_claims_judged(ids)
+    assert n_rows > distinct >= several > 0  # chapter 3's claims: a row per budget
+    text = landing.counts_sentence(verdicts.category_counts(rows), ids)
+    assert f"the {n_rows} rows that judge a claim of the thesis judge {distinct} distinct" in text
+    assert "distinct claims" not in landing.counts_sentence(verdicts.category_counts(rows))

@@ -189,6 +189,11 @@ def report_markdown(
         "",
         verdicts.counts_table(verdicts.category_counts(every), reportpage.category_markup),
         "",
+        landing.counts_sentence(
+            verdicts.category_counts(every),
+            [r.fields["claim"] for r in every if "claim" in r.fields],
+        ),
+        "",
         "The verdict per thesis artefact, rolled up from these rows, is on the "
         "[first page](intro.md).",
         "",

@@ -23,7 +23,7 @@ from mechlib.pipeline import bundle as bundle_mod
 from mechlib.pipeline.book import reportpage
 from mechlib.pipeline.findings import FINDINGS, Finding, Quote
 from mechlib.pipeline.provenance import DEFAULT_PROFILE
-from mechlib.reporting import verdicts
+from mechlib.reporting import claimlist, verdicts
 
 #: ``link(page, what, text)`` → a MyST link to the section of chapter ``page`` that shows ``what``.
 Link = Callable[[str, str, str], str]
@@ -187,15 +187,24 @@ def _mark_categories(text: str) -> str:
     return out
 
 
-def counts_sentence(counts: Mapping[str, int]) -> str:
+def counts_sentence(counts: Mapping[str, int], claim_ids: Sequence[str] = ()) -> str:
     """One sentence of the counts: how many rows compare published values, test the thesis's
-    claims, or go beyond the thesis."""
+    claims, or go beyond the thesis — and, of the judged claims ``claim_ids``, how many distinct
+    claims of the thesis their rows judge (one claim may have a row per setting)."""
     groups = {name: sum(counts[c] for c in members) for name, members in verdicts.COUNT_GROUPS}
     sizes = ", ".join(f"{n} {name}" for name, n in groups.items())
+    rows, distinct, several = claimlist.thesis_claims_judged(claim_ids)
+    per_claim = (
+        f"; the {rows} rows that judge a claim of the thesis judge {distinct} distinct claims, "
+        f"{several} of them once per setting (the report names each row's setting), so count "
+        f"claims, not rows, when weighing the thesis"
+        if rows > distinct
+        else ""
+    )
     return (
-        f"The report has {sum(counts.values())} rows ({sizes}); findings of ours are never "
-        f"counted among the thesis's claims, and agreement that follows by construction is not "
-        f"counted as reproduction."
+        f"The report has {sum(counts.values())} rows ({sizes}){per_claim}; findings of ours are "
+        f"never counted among the thesis's claims, and agreement that follows by construction is "
+        f"not counted as reproduction."
     )
 
 
@@ -264,7 +273,7 @@ def landing_markdown(
             "",
             "## Counts per verdict",
             "",
-            counts_sentence(counts),
+            counts_sentence(counts, [r.fields["claim"] for r in rows if "claim" in r.fields]),
             "",
             verdicts.counts_table(counts, reportpage.category_markup),
             "",

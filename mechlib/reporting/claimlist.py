@@ -7,15 +7,24 @@ again from a build's records for the book's pages (:func:`judge`).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
+from mechlib.reporting import categories as cat
 from mechlib.reporting import claims
 from mechlib.reporting.claims import ClaimSpec
 from mechlib.reporting.ourclaims import our_claims
 from mechlib.reporting.thesisclaims import CONTROL_PERIOD_US, thesis_claims
 
-__all__ = ["CLAIMS", "CONTROL_PERIOD_US", "claim", "for_page", "judge", "verdict_table"]
+__all__ = [
+    "CLAIMS",
+    "CONTROL_PERIOD_US",
+    "claim",
+    "for_page",
+    "judge",
+    "thesis_claims_judged",
+    "verdict_table",
+]
 
 #: every claim the book judges, by id, in the order the report lists them
 CLAIMS: dict[str, ClaimSpec] = {c.id: c for c in [*thesis_claims(), *our_claims()]}
@@ -38,6 +47,24 @@ def claim(claim_id: str) -> ClaimSpec:
 def for_page(page: str) -> list[ClaimSpec]:
     """The claims whose evidence the notebook ``page`` records."""
     return [c for c in CLAIMS.values() if c.page == page]
+
+
+def thesis_claims_judged(claim_ids: Iterable[str]) -> tuple[int, int, int]:
+    """How many of the judged claims ``claim_ids`` (report rows' ``claim`` fields) are the
+    thesis's: ``(rows, claims, claims judged in several settings)`` — a claim judged at several
+    settings (chapter 3's at each measurement budget) is one claim of the thesis with a row per
+    setting, told apart by its statement.
+
+    Raises
+    ------
+    KeyError
+        For an id the registry does not hold.
+    """
+    specs = [claim(c) for c in claim_ids]
+    ours = {s.id for s in specs if s.source != cat.SOURCE_THESIS}
+    rows = [s.statement for s in specs if s.id not in ours]
+    several = {s for s in rows if rows.count(s) > 1}
+    return len(rows), len(set(rows)), len(several)
 
 
 def judge(records: Mapping[str, Mapping[str, Any]]) -> dict[str, claims.Verdict]:
