@@ -34,6 +34,13 @@ def test_parameter_errors_and_maps_and_curves_and_costs() -> None:
     maps = {"A": {"before": RNG.random(20), "D&C": RNG.random(20)}}
     fig2 = cplot.error_maps({"A": POINTS}, maps)
     assert len([a for a in fig2.axes if a.get_title()]) == 2
+    # one point far above the rest (a singular corner) does not set the colour scales
+    values = RNG.random(100)
+    values[0] = 1e3  # the rest below 1
+    spiked = {"A": {"before": values, "D&C": values / 10}}
+    fig4 = cplot.error_maps({"A": RNG.random((100, 2))}, spiked)
+    tops = [c.get_clim()[1] for a in fig4.axes if a.get_title() for c in a.collections]
+    assert len(tops) == 2 and max(tops) <= 1e6  # µm: below the spike's 1e9
     rows = [
         {
             "mechanism": "A",

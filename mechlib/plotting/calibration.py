@@ -69,32 +69,37 @@ def parameter_errors(
     return fig
 
 
+#: the error maps' colour scales end at this percentile of their points: a few points near a
+#: singular corner, orders of magnitude above the rest, would otherwise leave one colour
+MAP_PERCENTILE = 95.0
+
+
 def error_maps(
     points: Mapping[str, np.ndarray], maps: Mapping[str, Mapping[str, np.ndarray]], axes=None
 ) -> Figure:
     """Position error [µm] over a workspace slice: one row per mechanism, one column per model
-    (before calibration, D&C, traditional); one colour scale per row for the calibrated maps."""
+    (before calibration, D&C, traditional); one colour scale per row for the calibrated maps.
+    Each scale ends at the :data:`MAP_PERCENTILE` th percentile of its points; points above it
+    take the top colour (the colour bar's arrow)."""
     mechs = list(points)
     cols = max(len(v) for v in maps.values())
     fig, panels = figure_and_panels(axes, (len(mechs), cols), (3.6 * cols, 3.2 * len(mechs)))
     panels = panels.reshape(len(mechs), cols)
     for row, m in zip(panels, mechs, strict=True):
         p = points[m]
-        after = [v for k, v in maps[m].items() if k != "before"]
-        vmax = UM_PER_M * max(float(np.max(v)) for v in after)
+        after = np.concatenate([np.ravel(v) for k, v in maps[m].items() if k != "before"])
+        vmax = UM_PER_M * float(np.percentile(after, MAP_PERCENTILE))
         for ax, (label, v) in zip(row, maps[m].items(), strict=False):
+            top = UM_PER_M * float(np.percentile(v, MAP_PERCENTILE)) if label == "before" else vmax
             sc = ax.scatter(
-                p[:, 0],
-                p[:, 1],
-                c=UM_PER_M * v,
-                s=14,
-                cmap="viridis",
-                vmin=0,
-                vmax=None if label == "before" else vmax,
+                p[:, 0], p[:, 1], c=UM_PER_M * v, s=14, cmap="viridis", vmin=0, vmax=top
             )
-            fig.colorbar(sc, ax=ax, label="µm")
+            fig.colorbar(sc, ax=ax, label="µm", extend="max")
             ax.set(title=f"{m}: {label}", xlabel="x [m]", ylabel="y [m]", aspect="equal")
-    fig.suptitle("Position error over a workspace slice (RMS over the trials after calibration)")
+    fig.suptitle(
+        "Position error over a workspace slice (RMS over the trials after calibration; colours "
+        f"end at each scale's {MAP_PERCENTILE:g}th percentile)"
+    )
     return fig
 
 
