@@ -83,12 +83,15 @@ def test_a_boolean_test_says_yes_or_no_of_one_value_and_counts_several() -> None
 def test_a_thesis_claim_judged_at_several_budgets_counts_once() -> None:
     budgets = [c for c in claimlist.CLAIMS if c.startswith("ch3.i.5r.")]
     assert len(budgets) == 3  # (i) on the 5R at each measurement budget
-    ours = next(c for c in claimlist.CLAIMS if c.startswith("ours."))
-    ids = [*budgets, "ch3.ii.5r." + budgets[0].rsplit(".", 1)[1], ours]
+    ids = [*budgets, "ch3.ii.5r." + budgets[0].rsplit(".", 1)[1]]
     assert claimlist.thesis_claims_judged(ids) == (4, 2, 1)
     assert claimlist.thesis_claims_judged([]) == (0, 0, 0)
+    assert {claimlist.claim_group(claimlist.claim(c)) for c in budgets} == {"ch3.i.5r"}
     with pytest.raises(KeyError):
         claimlist.thesis_claims_judged(["ch3.nonsense"])
+    ours = next(c for c in claimlist.CLAIMS if c.startswith("ours."))
+    with pytest.raises(ValueError, match="claims of ours"):
+        claimlist.thesis_claims_judged([*budgets, ours])
 
 
 def test_the_recorder_records_the_word_and_the_row_of_its_own_claims_only() -> None:

@@ -167,7 +167,7 @@ def test_the_landing_page_says_what_made_the_build(records: dict[str, dict[str, 
     # the build's profile in the reader's words: the default one is the chapters' own defaults
     when = dt.datetime(2026, 1, 2, tzinfo=dt.UTC)
     assert "each chapter's default parameters" in provenance.text(when, "ci")
-    assert "the parameters of profile `full`" in provenance.text(when, "full")
+    assert "with the parameters of profile `full`" in provenance.text(when, "full")
     page = landing.landing_markdown(records, "ci", provenance=made)
     assert made in page and page.index(made) > page.index("## This build")
     assert provenance.commit(Path("/")) == provenance.UNKNOWN  # not a repository
@@ -228,7 +228,10 @@ def test_the_view_counts_every_campaign_of_a_notebook(tmp_path) -> None:
 
 def test_the_counts_sentence_weighs_claims_not_rows(records: dict[str, dict[str, Any]]) -> None:
     rows = verdicts.all_rows(records)
-    ids = [r.fields["claim"] for r in rows if "claim" in r.fields]
+    ids = verdicts.thesis_claim_ids(rows)
+    assert len(ids) == verdicts.category_counts(rows)[cat.CAT_SUPPORTED] + sum(
+        verdicts.category_counts(rows)[c] for c in (cat.CAT_NOT_SUPPORTED, cat.CAT_MIXED)
+    )  # the rows the counts table calls claims of the thesis
     n_rows, distinct, several = claimlist.thesis_claims_judged(ids)
     assert n_rows > distinct >= several > 0  # chapter 3's claims: a row per budget
     text = landing.counts_sentence(verdicts.category_counts(rows), ids)

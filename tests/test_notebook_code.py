@@ -46,14 +46,14 @@ def test_notebooks_define_nothing_and_glue_only_through_the_recorder(notebook) -
     assert definitions_and_glue(_code(notebook)) == []
 
 
-#: Recorder methods that return what they record (``save`` and ``add_data`` return nothing shown)
-RETURNING = ("value", "text", "claim", "timing")
+#: Recorder methods that return something a cell would print (``save``: the record's path)
+RETURNING = ("value", "text", "claim", "timing", "save")
 
 
 def _silenced(source: str, node: ast.stmt) -> bool:
     """Whether a ``;`` follows the statement ``node`` on its last line (IPython shows nothing)."""
-    line = source.splitlines()[node.end_lineno - 1]  # type: ignore[operator]
-    return line[node.end_col_offset :].lstrip().startswith(";")
+    line = source.splitlines()[node.end_lineno - 1].encode()  # type: ignore[operator]
+    return line[node.end_col_offset :].decode().lstrip().startswith(";")  # offsets in bytes
 
 
 def echoed_records(cells: list[str]) -> list[str]:
@@ -80,10 +80,15 @@ def test_the_echo_check_finds_a_cell_ending_with_a_record() -> None:
     cells = [
         "x = 1\nrec.value('k', x,\n          atol=0)  # c",
         "rec.claim('c');  # c",
-        "rec.save()",
+        "path = rec.save()",
         "",
+        "rec.text('µ', 'µm');  # a silenced line with multi-byte characters",
+        "rec.save()",
     ]
-    assert echoed_records(cells) == ["code cell 1: ends with rec.value(...)"]
+    assert echoed_records(cells) == [
+        "code cell 1: ends with rec.value(...)",
+        "code cell 6: ends with rec.save(...)",
+    ]
 
 
 @pytest.mark.parametrize("notebook", NOTEBOOKS, ids=lambda p: p.stem)

@@ -273,7 +273,7 @@ def landing_markdown(
             "",
             "## Counts per verdict",
             "",
-            counts_sentence(counts, [r.fields["claim"] for r in rows if "claim" in r.fields]),
+            counts_sentence(counts, verdicts.thesis_claim_ids(rows)),
             "",
             verdicts.counts_table(counts, reportpage.category_markup),
             "",

@@ -26,6 +26,7 @@ PACKAGES: tuple[str, ...] = (
     "sfepy",
     "cvxopt",
     "scikit-learn",
+    "pyDOE3",
     "matplotlib",
     "papermill",
     "jupyter-book",
@@ -79,9 +80,9 @@ def text(now: dt.datetime | None = None, profile: str = "") -> str:
     parameters = (
         ""
         if not profile
-        else ", each chapter's default parameters"
+        else ", with each chapter's default parameters"
         if profile == DEFAULT_PROFILE
-        else f", the parameters of profile `{profile}`"
+        else f", with the parameters of profile `{profile}`"
     )
     built = f"- commit `{commit()}`, built {when}{parameters}"
     return "\n".join(

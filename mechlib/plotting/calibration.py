@@ -88,9 +88,11 @@ def error_maps(
     for row, m in zip(panels, mechs, strict=True):
         p = points[m]
         after = np.concatenate([np.ravel(v) for k, v in maps[m].items() if k != "before"])
-        vmax = UM_PER_M * float(np.percentile(after, MAP_PERCENTILE))
+        vmax = UM_PER_M * float(np.nanpercentile(after, MAP_PERCENTILE))
         for ax, (label, v) in zip(row, maps[m].items(), strict=False):
-            top = UM_PER_M * float(np.percentile(v, MAP_PERCENTILE)) if label == "before" else vmax
+            top = (
+                UM_PER_M * float(np.nanpercentile(v, MAP_PERCENTILE)) if label == "before" else vmax
+            )
             sc = ax.scatter(
                 p[:, 0], p[:, 1], c=UM_PER_M * v, s=14, cmap="viridis", vmin=0, vmax=top
             )

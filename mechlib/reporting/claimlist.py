@@ -49,22 +49,32 @@ def for_page(page: str) -> list[ClaimSpec]:
     return [c for c in CLAIMS.values() if c.page == page]
 
 
+def claim_group(spec: ClaimSpec) -> str:
+    """The claim ``spec`` judges whatever its setting: a claim judged per setting (chapter 3's
+    at each measurement budget) names its setting in the last part of its id
+    (``ch3.iii.5r.table8`` → ``ch3.iii.5r``); any other claim is its own."""
+    return spec.id.rsplit(".", 1)[0] if spec.setting else spec.id
+
+
 def thesis_claims_judged(claim_ids: Iterable[str]) -> tuple[int, int, int]:
-    """How many of the judged claims ``claim_ids`` (report rows' ``claim`` fields) are the
-    thesis's: ``(rows, claims, claims judged in several settings)`` — a claim judged at several
-    settings (chapter 3's at each measurement budget) is one claim of the thesis with a row per
-    setting, told apart by its statement.
+    """How many distinct claims of the thesis the rows judging ``claim_ids`` (the ``claim``
+    fields of the report's thesis-claim rows) judge: ``(rows, claims, claims judged in several
+    settings)``, claims grouped by :func:`claim_group`.
 
     Raises
     ------
     KeyError
         For an id the registry does not hold.
+    ValueError
+        For an id of a finding of ours (never counted among the thesis's claims).
     """
     specs = [claim(c) for c in claim_ids]
-    ours = {s.id for s in specs if s.source != cat.SOURCE_THESIS}
-    rows = [s.statement for s in specs if s.id not in ours]
-    several = {s for s in rows if rows.count(s) > 1}
-    return len(rows), len(set(rows)), len(several)
+    ours = [s.id for s in specs if s.source != cat.SOURCE_THESIS]
+    if ours:
+        raise ValueError(f"claims of ours among the thesis's claim rows: {ours}")
+    groups = [claim_group(s) for s in specs]
+    several = {g for g in groups if groups.count(g) > 1}
+    return len(groups), len(set(groups)), len(several)
 
 
 def judge(records: Mapping[str, Mapping[str, Any]]) -> dict[str, claims.Verdict]:

@@ -221,6 +221,22 @@ def all_rows(records: Records | Path) -> list[ReportRow]:
     return load_rows(records) + redrawn_rows()
 
 
+def thesis_claim_ids(rows: Iterable[ReportRow]) -> list[str]:
+    """The claim ids of the rows counted as claims of the thesis (:data:`CLAIM_CATEGORIES`),
+    one per row.
+
+    Raises
+    ------
+    ValueError
+        For such a row without its claim's id.
+    """
+    claimed = [r for r in rows if r.category in cat.CLAIM_CATEGORIES]
+    missing = [r.fields.get("quantity", "?") for r in claimed if "claim" not in r.fields]
+    if missing:
+        raise ValueError(f"thesis-claim rows without a claim id: {missing}")
+    return [r.fields["claim"] for r in claimed]
+
+
 def category_counts(rows: Iterable[ReportRow]) -> dict[str, int]:
     """Number of rows per category, every category present (zero if none), in report order."""
     counts = dict.fromkeys(cat.CATEGORIES, 0)

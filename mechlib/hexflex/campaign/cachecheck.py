@@ -143,7 +143,8 @@ def sample_uniform(entries: list, per_kind: dict[str, int], seed: int) -> list:
     uniformly without replacement within each mechanism family (:func:`~.store.family`: the
     HexFlex, the compliant layouts), whatever their model, ``ceil(n N_f / N)`` from a family
     holding ``N_f`` of the kind's ``N`` tasks — so every family is drawn from, and the total
-    exceeds ``n`` by less than the number of families. In key order.
+    exceeds ``n`` by less than the number of families. Grouped by kind and family, by key
+    within each.
 
     Were a share ``p`` of the tasks of a kind wrong, the sample would miss every wrong one with
     probability at most ``(1 − p)^n``: within a family the draws miss its share ``p_f`` with
