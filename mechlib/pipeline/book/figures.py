@@ -12,6 +12,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from mechlib.plotting.calibration import MAP_PERCENTILE
+
 #: (caption, alt text) per notebook and figure cell id.
 CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
     "published_doe": {
@@ -242,7 +244,9 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
         ),
         "b5r-16": (
             "Position error over a regular slice of each workspace: before calibration and its "
-            "RMS over the trials after each strategy.",
+            "RMS over the trials after each strategy. Each colour scale ends at the "
+            f"{MAP_PERCENTILE:g}th percentile of its points (the colour bar's arrow): the few "
+            "points by a singular corner lie far above it.",
             "Maps of the position error over each mechanism's workspace slice.",
         ),
         "b5r-18": (
