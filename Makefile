@@ -43,7 +43,7 @@ export PYDEVD_DISABLE_FILE_VALIDATION := 1
 # compiles SfePy, SymPy, SciPy … again: measured 7.0 s against 2.9 s to import the FE stack.
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: help env book test test-first test-rerun test-book test-side store-check-reuse unit notebooks rerun check-records check-book check-browser run references lint \
+.PHONY: help env book test test-first test-rerun test-book test-side store-check-reuse unit unit-a unit-b notebooks rerun check-records check-book check-browser run references lint \
         bench lock clean store store-seed store-check book-checks determinism-check
 
 help:
@@ -114,9 +114,16 @@ book: $(EXECUTED)
 	@echo "Book: $(abspath book/_build/html/index.html)"
 
 # --- tests ------------------------------------------------------------------------------------
-unit: $(STAMP)
-	$(VENV)/bin/pytest -q tests --ignore=tests/test_records.py --ignore=tests/test_book_html.py \
-	  --ignore=tests/test_explorer_browser.py
+# the unit tests in two processes, every other test file each (each its own temporary folder):
+# in make test they share the cores with the store's cold sample, and the last of the three no
+# longer leaves a core idle alone
+UNIT_TESTS := $(filter-out tests/test_records.py tests/test_book_html.py tests/test_explorer_browser.py,\
+  $(sort $(wildcard tests/test_*.py)))
+unit: unit-a unit-b
+
+unit-a unit-b: unit-%: $(STAMP)
+	$(VENV)/bin/pytest -q -p no:cacheprovider --basetemp=$(BUILD)/pytest-$* \
+	  $(shell printf '%s\n' $(UNIT_TESTS) | awk 'NR % 2 == $(if $(filter a,$*),1,0)')
 
 check-records: $(EXECUTED)
 	$(VENV)/bin/pytest -q tests/test_records.py
@@ -169,7 +176,7 @@ test-book: test-first
 # freed memory for reuse (its model builds otherwise spend a third of their time in the kernel,
 # mapping and unmapping large arrays: measured 82 s of system time against 49 s)
 test-side: $(STAMP)
-	$(LOW_PRIORITY) $(MAKE) --no-print-directory -j2 unit store-check-reuse
+	$(LOW_PRIORITY) $(MAKE) --no-print-directory -j3 unit-a unit-b store-check-reuse
 
 store-check-reuse: $(STAMP)
 	MALLOC_MMAP_MAX_=0 MALLOC_TRIM_THRESHOLD_=17179869184 $(MAKE) --no-print-directory store-check
