@@ -149,8 +149,17 @@ test: $(STAMP)
 	@# the store's cold sample, from the start. The chain is the longest path; the low-priority
 	@# work fills the cores it leaves idle (two chapters waiting on one, the last chapters' tail).
 	@# (The book's checks keep the normal priority: the browser's pages have timeouts.)
+	@# The notebooks run with a BLAS kernel other than this machine's own and the references'
+	@# (OPENBLAS_CORETYPE; mechlib/pipeline/kernels.py): their records are compared with the
+	@# references across kernels, and with the re-run's byte for byte on one kernel.
 	$(MAKE) --no-print-directory $(STORE_SEEDED)
-	$(MAKE) --no-print-directory -j4 test-rerun test-book test-side
+	kernel=$$($(KERNELS) other tests/references); \
+	echo "make test: the notebooks run with OpenBLAS's $$kernel kernel (this machine's: $$($(KERNELS) own))"; \
+	$(MAKE) --no-print-directory -j4 test-rerun test-book test-side TEST_KERNEL=$$kernel
+
+# the BLAS kernel of make test's notebooks (set by `make test`; empty: the machine's own)
+KERNELS     := $(PY) -m mechlib.pipeline.kernels
+WITH_KERNEL  = $(if $(TEST_KERNEL),OPENBLAS_CORETYPE=$(TEST_KERNEL))
 
 # Work at a low priority. `nice` alone does not rank it below the notebooks where the kernel
 # groups processes by session for scheduling (Linux's autogroups, on by default): each notebook's
@@ -161,11 +170,11 @@ LOW_PRIORITY = setsid --wait sh -c 'if test -w /proc/self/autogroup; then echo 5
 
 # the steps of `make test` (each a sub-make with its own job slots)
 test-first: $(STAMP)
-	$(MAKE) --no-print-directory -j2 notebooks
-	$(MAKE) --no-print-directory check-records
+	$(WITH_KERNEL) $(MAKE) --no-print-directory -j2 notebooks
+	$(if $(TEST_KERNEL),MECHLIB_TEST_KERNEL=$(TEST_KERNEL)) $(MAKE) --no-print-directory check-records
 
 test-rerun: test-first
-	$(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments FIRST_RUN=$(BUILD)
+	$(WITH_KERNEL) $(MAKE) --no-print-directory rerun FE_CACHE_FROM=$(BUILD)/cache/experiments FIRST_RUN=$(BUILD)
 	$(MAKE) --no-print-directory determinism-check \
 	  $(if $(wildcard $(STORE)/manifest.json),DETERMINISM_ARGS='--store-checked $(STORE)')
 

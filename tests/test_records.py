@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import os
 from pathlib import Path
 
 import pytest
@@ -82,3 +83,18 @@ def test_missing_and_extra_keys_are_reported(tmp_path: Path) -> None:
     extra = {"values": {"a": {"value": 1.05}, "b": {"value": 2}}}
     assert compare(extra, ref) == ["b: recorded but not in the reference (run `make references`)"]
     assert compare({"values": {"a": {"value": 1.2}}}, ref)[0].startswith("a: got")
+
+
+@pytest.mark.parametrize("notebook", NOTEBOOKS)
+def test_record_comes_from_another_blas_kernel_than_its_reference(notebook: str) -> None:
+    """Under `make test` (which names its kernel in $MECHLIB_TEST_KERNEL) the comparison above is
+    across BLAS kernels: the record's kernel is the one asked for, the reference's another."""
+    kernel = os.environ.get("MECHLIB_TEST_KERNEL")
+    if not kernel:
+        pytest.skip("not under make test: the notebooks ran with this machine's own kernel")
+    record = load(records_dir() / f"{notebook}.json")
+    reference = load(REFERENCES / f"{notebook}.json")
+    assert record.get("blas") == kernel, f"computed with {record.get('blas')}, not {kernel}"
+    assert reference.get("blas") not in (None, kernel), (
+        f"the reference was recorded with {reference.get('blas')}: not a cross-kernel comparison"
+    )

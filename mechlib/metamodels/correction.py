@@ -25,6 +25,7 @@ from mechlib.metamodels.families import (
     Surrogate,
     check_forces,
     fit_surrogate,
+    name_of,
     predict_array,
     wrap_model,
 )
@@ -60,7 +61,7 @@ def corrected(low: Surrogate, forces: object, poses: object, seed: int = 0) -> S
     def poses_of(f: np.ndarray) -> np.ndarray:
         return predict_array(low, f) + predict_array(gp, f)
 
-    name = f"{low.state.get('name', low.family)} + Gaussian-process correction"
+    name = f"{name_of(low)} + Gaussian-process correction"
     return wrap_model(name, poses_of, amplitude=low.amplitude, n_inputs=low.n_inputs)
 
 

@@ -6,15 +6,15 @@ outside the validated range unless told to extrapolate.
 
 Families (``FAMILIES``): ``linear``, S_T of Eq 7 (least squares, no intercept,
 :func:`.linear.fit_linear`); ``quadratic``, Eq 6 (second order with interactions and intercept,
-:func:`.quadratic.fit_quadratic`); ``cubic``, every monomial of total degree ≤ 3 (84 terms for
-six forces), least squares on the forces divided by the validated range; ``gp``, a Gaussian
-process (Kriging) per output from scikit-learn on the residual of a linear trend (regression
-Kriging); ``pce``, sparse polynomial chaos: a Legendre basis (orthonormal for uniform forces on
-the validated range) of total degree ≤ ``PCE_DEGREE``, whose terms scikit-learn's
-``LassoLarsCV`` (LARS stopped by seeded k-fold cross-validation) selects per output — those that
-entered its path up to the chosen penalty — and least squares fits (hybrid LARS, as OpenTURNS's
-``LeastSquaresMetaModelSelection``), unless they are as many as the runs (then LARS's own
-coefficients are kept); degree 4 or 5 was measured worse below 300 runs.
+:func:`.quadratic.fit_quadratic`); ``cubic``, every monomial of total degree ≤ 3 (84 terms for six
+forces), least squares on the forces divided by the validated range; ``gp``, a Gaussian process
+(Kriging) per output on the residual of a linear trend (regression Kriging,
+:func:`.gaussian_process.fit_gp`); ``pce``, sparse polynomial chaos: a Legendre basis (orthonormal
+for uniform forces on the validated range) of total degree ≤ ``PCE_DEGREE``, whose terms
+scikit-learn's ``LassoLarsCV`` (LARS stopped by seeded k-fold cross-validation) selects per output
+— those that entered its path up to the chosen penalty — and least squares fits (hybrid LARS, as
+OpenTURNS's ``LeastSquaresMetaModelSelection``), unless they are as many as the runs (then LARS's
+own coefficients are kept); degree 4 or 5 was measured worse below 300 runs.
 
 A model not fitted here (a physics-based reduced-order model) joins the scoring, timing and
 inversion as family ``PHYSICS`` through :func:`wrap_model`.
@@ -29,7 +29,7 @@ batched for the GPs, for one pose for the PCEs (total degree 3):
 =========================================  ====================  ==================  ==============
 model                                      error % (30/100/300)  fit s (30/100/300)  µs/pose
 =========================================  ====================  ==================  ==============
-sklearn GP on a linear trend (``gp``)      2.6 / 0.56 / 0.089    0.4 / 1.9 / 82      3 / 16 / 44
+sklearn GP on a linear trend (``gp``) †   2.6 / 0.56 / 0.089    0.4 / 1.9 / 82      3 / 16 / 44
 sklearn GP, constant mean                  2.5 / 2.7 / 0.23      1.6 / 5.9 / 66      7 / 23 / 101
 OpenTURNS GP, linear basis                 3.1 / 0.69 / 0.11     1.3 / 3.5 / 27      41 / 156 / 137
 SMT KRG, linear trend                      4.1 / 0.96 / —        19 / 29 / > 600     15 / 83 / —
@@ -38,6 +38,9 @@ Legendre + sklearn LassoLarsCV (``pce``)   1.9 / 3.2 / 1.7       0.5 / 0.6 / 0.4
 chaospy + sklearn LarsCV                   3.1 / 1.0 / 1.4       2.5 / 2.0 / 2.4     94k – 207k
 OpenTURNS FunctionalChaos, LARS + LOO      4.4 / 4.3 / 1.7       4.9 / 0.5 / 6.8     380 – 3600
 =========================================  ====================  ==================  ==============
+
+† measured with a free white-noise level and scikit-learn's default optimiser stop, before the
+kernel and stop of :mod:`.gaussian_process` (a relative nugget, a projected-gradient stop).
 
 For reference: ``linear`` 2.8 / 3.0 / 2.7, ``quadratic`` 7.4 / 2.7 / 2.8, ``cubic`` — / 3.3 / 1.8.
 No other library was clearly better (OpenTURNS's GP is close to scikit-learn's, slower to
@@ -56,7 +59,7 @@ import numpy as np
 
 from mechlib.blas import one_thread
 from mechlib.memo import array_memo
-from mechlib.metamodels import linear, quadratic
+from mechlib.metamodels import gaussian_process, linear, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 FAMILIES = ("linear", "quadratic", "cubic", "gp", "pce")
@@ -79,14 +82,6 @@ PCE_CV_FOLDS = 5
 """Folds of the cross-validation that stops the LARS path of each ``pce`` output."""
 PCE_MAX_ITER = 500
 """Largest number of LARS steps per ``pce`` output (more than the 84 basis terms of degree 3)."""
-GP_RESTARTS = 2
-"""Seeded restarts of scikit-learn's hyper-parameter optimiser per ``gp`` output."""
-GP_LENGTH_BOUNDS = (1e-2, 1e3)
-"""Bounds of the ``gp`` RBF length scales, in units of the validated range."""
-GP_NOISE = 1e-8
-"""Initial white-noise level of the ``gp`` kernel (normalised targets: FE data are noise-free)."""
-GP_NOISE_BOUNDS = (1e-14, 1e-1)
-"""Bounds of the ``gp`` white-noise level (normalised targets)."""
 RANGE_RTOL = 1e-12
 """Relative slack of the validated-range check (round-off of scaled designs)."""
 
@@ -168,26 +163,6 @@ def legendre_products(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
     vander = vander * np.sqrt(2 * np.arange(deg + 1) + 1)
     cols = np.take_along_axis(vander, exps.T[None, :, :], axis=2)  # (runs, inputs, terms)
     return np.prod(cols, axis=1)
-
-
-def _fit_gp(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
-    from sklearn.exceptions import ConvergenceWarning
-    from sklearn.gaussian_process import GaussianProcessRegressor
-    from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
-
-    trend = linear.fit_linear(u, y, intercept=True)
-    models = []
-    for j in range(y.shape[1]):
-        kernel = ConstantKernel(1.0) * RBF(np.ones(u.shape[1]), GP_LENGTH_BOUNDS) + WhiteKernel(
-            GP_NOISE, GP_NOISE_BOUNDS
-        )
-        gp = GaussianProcessRegressor(
-            kernel, normalize_y=True, n_restarts_optimizer=GP_RESTARTS, random_state=seed
-        )
-        with warnings.catch_warnings():  # optimum on a bound (no noise, a linear direction)
-            warnings.filterwarnings("ignore", category=ConvergenceWarning)
-            models.append(gp.fit(u, trend["residuals"][:, j]))
-    return {"S": trend["S"], "b0": trend["b0"], "models": models}
 
 
 def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
@@ -275,10 +250,17 @@ def fit_surrogate(
             coef, *_ = np.linalg.lstsq(_monomials(u, exps), y, rcond=None)
             state = {"exponents": exps, "coef": coef}
         elif family == "gp":
-            state = _fit_gp(u, y, seed)
+            state = gaussian_process.fit_gp(u, y, seed=seed, trend="linear", amplitude=1.0)
         else:
             state = _fit_pce(u, y, seed)
     return Surrogate(family, amplitude, x.shape[1], y.shape[1], state)
+
+
+def name_of(surrogate: Surrogate) -> str:
+    """What a surrogate is: its ``PHYSICS`` model's name, else its family's."""
+    if surrogate.family == PHYSICS:
+        return str(surrogate.state["name"])
+    return surrogate.family
 
 
 def wrap_model(
@@ -369,8 +351,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
     if surrogate.family == "cubic":
         return _monomials(u, s["exponents"]) @ s["coef"]
     if surrogate.family == "gp":
-        gp = np.column_stack([m.predict(u) for m in s["models"]])
-        return s["b0"] + u @ s["S"].T + gp
+        return gaussian_process.predict_scaled(s, u)
     return legendre_products(u, s["exponents"]) @ s["coef"]
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mechlib.metamodels.gaussian_process import predict_gp
+from mechlib.metamodels.gaussian_process import GaussianProcess, predict_gp
 from mechlib.metamodels.linear import predict_linear
 from mechlib.metamodels.quadratic import predict_quadratic
 from mechlib.params import check_choice, check_matrix
@@ -86,11 +86,11 @@ def predict_fit(fit: object, design: object) -> np.ndarray:
     ``fit`` is what :func:`~mechlib.metamodels.linear.fit_linear` or
     :func:`~mechlib.metamodels.linear.fit_penalized` (a dict with ``S``),
     :func:`~mechlib.metamodels.quadratic.fit_quadratic` (a dict with ``coef``) or
-    :func:`~mechlib.metamodels.gaussian_process.fit_gp` (a list) returned.
+    :func:`~mechlib.metamodels.gaussian_process.fit_gp` (a ``GaussianProcess``) returned.
 
     Parameters
     ----------
-    fit : dict or list
+    fit : dict or GaussianProcess
     design : array_like, shape (runs, factors)
 
     Returns
@@ -102,7 +102,7 @@ def predict_fit(fit: object, design: object) -> np.ndarray:
     TypeError
         If ``fit`` is none of these.
     """
-    if isinstance(fit, list):
+    if isinstance(fit, GaussianProcess):
         return predict_gp(fit, design)
     if isinstance(fit, dict) and "coef" in fit:
         return predict_quadratic(fit["coef"], design)

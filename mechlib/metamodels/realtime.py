@@ -23,6 +23,7 @@ from mechlib.blas import one_thread
 from mechlib.metamodels.families import (
     Surrogate,
     legendre_products,
+    name_of,
     predict_array,
     total_degree_exponents,
 )
@@ -90,7 +91,7 @@ def _fit_legendre(teacher: Surrogate, u: np.ndarray, y: np.ndarray, degree: int)
         )
     with one_thread():
         coef, *_ = np.linalg.lstsq(legendre_products(u, exps), y, rcond=None)
-    name = teacher.state.get("name", teacher.family)
+    name = name_of(teacher)
     state = {"exponents": exps, "coef": coef, "teacher": name}
     return Surrogate(DISTILLED, teacher.amplitude, teacher.n_inputs, teacher.n_outputs, state)
 

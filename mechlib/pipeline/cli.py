@@ -41,6 +41,16 @@ def _execute(args: argparse.Namespace) -> int:
 
 
 def _update(args: argparse.Namespace) -> int:
+    import numpy  # noqa: F401  (loads OpenBLAS, so its kernel can be read)
+
+    from mechlib.blasinfo import openblas_kernel
+    from mechlib.pipeline.kernels import check_own_kernel
+
+    foreign = check_own_kernel(args.records, openblas_kernel())
+    if foreign:  # e.g. make test's runs, with another kernel: then nothing would be cross-checked
+        print("references come from this machine's own BLAS kernel; remove build/executed and "
+              "run make references again:\n" + "\n".join(foreign))  # fmt: skip
+        return 2
     for line in update_references(args.records, args.references):
         print(line)
     return 0

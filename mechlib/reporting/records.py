@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from mechlib.blasinfo import openblas_kernel
 from mechlib.params import check_float
 from mechlib.paths import records_dir
 from mechlib.reporting import claimlist, claims, report
@@ -309,6 +310,9 @@ class Recorder:
             "values": self.values,
             "report": self.report,
             "glue": self.glued,
+            # the BLAS kernel the values were computed with: references come from the machine's
+            # own, `make test` compares them with another's (mechlib.pipeline.kernels)
+            "blas": openblas_kernel(),
         }
         if self.timings:  # machine-dependent: not compared (see :meth:`timing`)
             payload["timings"] = self.timings
