@@ -229,11 +229,12 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         json.dumps(claimlist.verdict_table(judged), indent=1, ensure_ascii=False) + "\n",
     )
     has_store = (STORE_DIR / "manifest.json").is_file()  # every FE run the book reads
+    runs = bundleruns.store_tables(STORE_DIR) if has_store else {}
     data = bundle.write_bundle(
         records,
         generated / bundle.NAME,
-        extra=bundleruns.store_tables(STORE_DIR) if has_store else {},
-        extra_readme=bundleruns.README if has_store else "",
+        extra=runs,
+        extra_readme=bundleruns.readme(runs) if has_store else "",
     )
     landing.write_landing(
         records,
