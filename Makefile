@@ -271,8 +271,8 @@ clean:
 # installs both). Run after `make book` (it reuses the generated pages; notebooks are not re-run).
 PDF_HTML      := book/_build/singlehtml
 PDF           := book/_build/pdf/book.pdf
-# the whole book printed to about 90 pages (measured); fewer than this means a truncated print
-# (check-pdf also derives a floor from the amount of text)
+# fewer pages than this means a truncated print (check-pdf also derives a floor from the amount
+# of text; `pdfinfo book/_build/pdf/book.pdf` gives the page count of a build)
 PDF_MIN_PAGES ?= 50
 
 .PHONY: pdf check-pdf
