@@ -88,9 +88,10 @@ $(BUILD)/executed/%.ipynb: notebooks/%.ipynb $(MECHLIB_SRC) $(STAMP) $(wildcard 
 	@test "$(PROFILE)" = ci || test -d $(PROFILE_DIR) || { echo "no profile $(PROFILE_DIR)"; exit 2; }
 	@mkdir -p $(BUILD)/executed $(BUILD)/records
 	@echo "executing $< (profile $(PROFILE))"
-	$(PIPELINE) execute --notebook $< --out $@.tmp --records $(BUILD)/records \
+	@# into a temporary name that papermill accepts without a warning (it wants .ipynb or .json)
+	$(PIPELINE) execute --notebook $< --out $(BUILD)/executed/$*.tmp.ipynb --records $(BUILD)/records \
 	  -- $(if $(wildcard $(PROFILE_DIR)/$*.yaml),-f $(PROFILE_DIR)/$*.yaml)
-	mv $@.tmp $@
+	mv $(BUILD)/executed/$*.tmp.ipynb $@
 
 # a chapter executes after those whose records fill its inputs (the DOE chapter runs on the
 # geometry and mesh that the HexFlex model chapter identifies)
@@ -279,8 +280,8 @@ clean:
 # installs both). Run after `make book` (it reuses the generated pages; notebooks are not re-run).
 PDF_HTML      := book/_build/singlehtml
 PDF           := book/_build/pdf/book.pdf
-# the whole book printed to about 90 pages (measured); fewer than this means a truncated print
-# (check-pdf also derives a floor from the amount of text)
+# fewer pages than this means a truncated print (check-pdf also derives a floor from the amount
+# of text; `pdfinfo book/_build/pdf/book.pdf` gives the page count of a build)
 PDF_MIN_PAGES ?= 50
 
 .PHONY: pdf check-pdf

@@ -308,3 +308,18 @@ def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_dire
     assert "geometry = {'a': 1}  # passed by the build; from the model" in params
     assert "extra = 2  # passed by the build" in params
     assert out["cells"][1]["source"] == "x = [1,  2]\nx\n"
+
+
+def test_a_notebook_still_executing_is_no_chapter(tmp_path: Path) -> None:
+    """The Makefile executes into ``<name>.tmp.ipynb`` and renames it when done: the book copies
+    only finished notebooks."""
+    from mechlib.pipeline.execute import PARTIAL_SUFFIX
+
+    executed = tmp_path / "executed"
+    executed.mkdir()
+    nb = {"cells": [], "metadata": {}, "nbformat": 4, "nbformat_minor": 5}
+    (executed / "done.ipynb").write_text(json.dumps(nb))
+    (executed / f"running{PARTIAL_SUFFIX}").write_text(json.dumps(nb))
+    sections = bookbuild.copy_chapters(executed, tmp_path / "chapters")
+    assert list(sections) == ["done"]
+    assert [p.name for p in (tmp_path / "chapters").iterdir()] == ["done.ipynb"]

@@ -46,12 +46,16 @@ def test_bundle_needs_records(tmp_path: Path) -> None:
 
 
 def _store(folder: Path) -> Path:
-    """A small store without FE: two models, a linear and a non-linear task, keys as the code
-    makes them."""
+    """A small store without FE: two HexFlex models with a linear and a non-linear task, two
+    parallelogram models with a non-linear task each (one of two runs), keys as the code makes
+    them."""
+    from mechlib.compliant.spec import MechanismSpec
     from mechlib.hexflex.campaign import store as st
-    from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
+    from mechlib.hexflex.campaign.taskcache import task_key
+    from mechlib.parallelogram import ourfe
+    from mechlib.parallelogram.mechanism import layout
 
-    fp = model_code_fingerprint()
+    fp = st.fingerprints()
     specs = [
         json.dumps({"geometry": {"thickness": t}, "mesh": "default", "mesh_size": 0.1,
                     "element": "q2", "young": 71700.0, "poisson": 0.33})
@@ -60,12 +64,18 @@ def _store(folder: Path) -> Path:
     forces = np.array([[0.1, -0.2, 0.3, 0.0, 0.5, -1.0], [0.25, 0, 0, 0, 0, 0]])
     lin = np.arange(12.0).reshape(2, 6)
     nonlin = np.c_[np.arange(36.0).reshape(2, 18), [[3, 1, 0, 1e-12], [4, 2, 1, 2e-12]]]
+    hexflex = fp["hexflex"]
     entries = [
-        st.Entry(task_key(specs[0], "linear", forces, 1, fp), specs[0], "linear", 1, forces, lin),
-        st.Entry(
-            task_key(specs[1], "nonlinear", forces, 2, fp), specs[1], "nonlinear", 2, forces, nonlin
-        ),
-    ]
+        st.Entry(task_key(specs[0], "linear", forces, 1, hexflex), specs[0], "linear", 1, forces,
+                 lin),
+        st.Entry(task_key(specs[1], "nonlinear", forces, 2, hexflex), specs[1], "nonlinear", 2,
+                 forces, nonlin),
+    ]  # fmt: skip
+    for layers, loads in ((2, [[0.0, 1.0, 0.0], [1.0, 0.5, 0.2]]), (1, [[0.5, 0.0, 0.1]])):
+        spec = MechanismSpec(layout(stage_young=5e6), 10.0, layers).key()
+        newton = ourfe.to_newton(loads)
+        key = task_key(spec, "nonlinear", newton, 1, fp["mechanism"])
+        entries.append(st.Entry(key, spec, "nonlinear", 1, newton, nonlin[: len(newton)] + layers))
     return st.write_store(entries, folder)
 
 
@@ -82,6 +92,62 @@ def test_store_tables_list_every_run_and_model(tmp_path: Path) -> None:
     assert [r["model"] for r in nonlinear] == ["M1", "M1"] and nonlinear[0]["load steps"] == "2"
     assert nonlinear[1]["euler_xyz θz [µrad]"] == "35" and nonlinear[1]["restarts [count]"] == "1"
     assert float(nonlinear[0]["residual [relative]"]) == 1e-12
+
+
+def test_store_tables_hold_the_parallelogram_runs_and_say_how_many(tmp_path: Path) -> None:
+    from mechlib.compliant.spec import MechanismSpec
+    from mechlib.pipeline import bundleruns
+
+    folder = _store(tmp_path / "store")
+    tables = bundleruns.store_tables(folder)
+    models = list(csv.DictReader(io.StringIO(tables["runs/layout_models.csv"])))
+    runs = list(csv.DictReader(io.StringIO(tables["runs/layout_nonlinear_runs.csv"])))
+    assert [(m["model"], m["layers"]) for m in models] == [("L1", "1"), ("L2", "2")]
+    spec = MechanismSpec.from_key(models[1]["specification (JSON)"])  # the model, in full
+    assert spec.layers == 2 and spec.mesh_size == 10.0
+    assert [r["model"] for r in runs] == ["L1", "L2", "L2"]
+    assert float(runs[0]["M_z [N·mm]"]) > 0 and runs[1]["F_x [N]"] == "0"
+    assert runs[2]["small x [µm]"] == "20" and runs[0]["corrections [count]"] == "4"  # 3 + 1
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["runs"]["nonlinear"] == 5  # two HexFlex runs, three parallelogram runs
+    counts = bundleruns.run_counts(tables)
+    assert counts == {"runs/linear_runs.csv": 2, "runs/nonlinear_runs.csv": 2,
+                      "runs/layout_nonlinear_runs.csv": 3}  # fmt: skip
+    readme = bundleruns.readme(tables)
+    assert "5 non-linear and 2 linear runs in all" in readme
+    assert "nonlinear_runs.csv: 2;" in readme and "layout_nonlinear_runs.csv: 3)" in readme
+    assert max(len(line) for line in readme.splitlines()) <= 100
+
+
+def test_store_tables_refuse_to_lose_runs(tmp_path: Path) -> None:
+    from mechlib.hexflex.campaign.store import StoreError
+    from mechlib.pipeline import bundleruns
+
+    folder = _store(tmp_path / "store")
+    manifest = json.loads((folder / "manifest.json").read_text())
+    manifest["runs"]["nonlinear"] += 1  # a run the tables would leave out
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    with pytest.raises(StoreError, match="hold 5 nonlinear runs, the store's manifest counts 6"):
+        bundleruns.store_tables(folder)
+
+
+def test_the_bundle_holds_as_many_runs_as_the_landing_quotes() -> None:
+    """The repository's store: the bundle's runs of each kind are the manifest's, which the
+    landing page quotes."""
+    from mechlib.paths import STORE_DIR
+    from mechlib.pipeline import bundleruns, storecmd
+
+    if not (STORE_DIR / "manifest.json").is_file():
+        pytest.skip("no results store in this checkout")
+    tables = bundleruns.store_tables(STORE_DIR)
+    manifest = json.loads((STORE_DIR / "manifest.json").read_text())
+    counts = bundleruns.run_counts(tables)
+    nonlinear = sum(counts.get(n, 0) for n in bundleruns.RUN_FILES["nonlinear"])
+    assert nonlinear == manifest["runs"]["nonlinear"]
+    assert counts["runs/layout_nonlinear_runs.csv"] > 0  # the parallelogram's runs are in
+    line = storecmd.landing_line(STORE_DIR)
+    if "read from the results store" in line:
+        assert f"{nonlinear} geometrically non-linear runs" in line
 
 
 def test_bundle_ships_notebook_data_and_the_evaluator(tmp_path: Path) -> None:

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 from pathlib import Path
 
 from mechlib.paths import REPO_ROOT
 from mechlib.pipeline.execute import papermill_command
+
+_PYTHONPATH = {k: v for k, v in os.environ.items() if k == "PYTHONPATH"}
 
 
 def _run_with(name: str, args: list[str], tmp_path: Path) -> tuple[int, str]:
@@ -17,7 +20,8 @@ def _run_with(name: str, args: list[str], tmp_path: Path) -> tuple[int, str]:
         papermill_command(nb, out, args),
         capture_output=True,
         text=True,
-        env={"MECHLIB_RECORDS": str(tmp_path), "PATH": ""},
+        # nothing of the caller's environment but where it imports mechlib from, if it says
+        env={"MECHLIB_RECORDS": str(tmp_path), "PATH": "", **_PYTHONPATH},
         check=False,
     )
     return done.returncode, done.stderr + (out.read_text() if out.exists() else "")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -30,7 +31,9 @@ def test_papermill_command_is_the_one_command_line() -> None:
         Path("notebooks/a.ipynb"), Path("/out/a.ipynb"), ["-p", "seed", "1"], python="/env/bin/py"
     )
     assert cmd == [
-        "/env/bin/papermill",
+        "/env/bin/py",
+        "-m",
+        "mechlib.pipeline.papermillrun",
         "-k",
         "python3",
         "--cwd",
@@ -246,3 +249,81 @@ def test_a_chapter_deferred_after_a_later_one_is_refused(monkeypatch: pytest.Mon
     monkeypatch.setitem(chapters.DEFERRED, "hexflex_model", "beyond_5r")
     with pytest.raises(ValueError, match="deferred chapter 'hexflex_model' must come after"):
         chapters.check_order()
+
+
+_FAKE_PAPERMILL = """\
+import json, os, sys
+events = [
+    {"event": "start", "to_compute": 3, "done": 0, "estimate_s": 120.0, "per_task_s": 60.0,
+     "measured_when": "2026-11-27T10:00:00+00:00"},
+    {"event": "tick", "to_compute": 3, "done": 1, "elapsed_s": 40.0},
+    {"event": "end", "to_compute": 3, "done": 3, "elapsed_s": 110.0},
+]
+with open(os.environ["MECHLIB_PROGRESS"], "a") as fh:
+    for e in events:
+        base = {"desc": "non-linear FE runs", "total": 4, "cached": 1, "workers": 2}
+        fh.write(json.dumps({**base, **e}) + "\\n")
+sys.stderr.write("Executing notebook with kernel: python3\\n")
+"""
+
+
+def test_make_run_draws_the_progress_of_its_fe_campaigns(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys
+) -> None:
+    import sys
+
+    from mechlib.pipeline import progressview
+
+    nb = _notebook(tmp_path / "nb.ipynb", [_parameters_cell(["seed = 1\n"])])
+    monkeypatch.setattr(progressview, "LOG_EVERY_S", 0.0)  # every tick a log line
+    monkeypatch.setattr(
+        runs, "papermill_command", lambda *a: [sys.executable, "-c", _FAKE_PAPERMILL]
+    )
+    argv = ["--notebook", str(nb), "--out", str(tmp_path / "runs"), "--", "-p", "seed", "2"]
+    assert runs.main(argv) == 0
+    err = capsys.readouterr().err.splitlines()  # not a terminal: lines, as in a log
+    drawn = [line for line in err if line.startswith("[nb] ")]  # papermill's own lines between
+    assert drawn[0] == (
+        "[nb] non-linear FE runs: 4 tasks, 1 in the cache, 3 to compute on 2 workers: about "
+        "2.0 min (60 s a task on one worker, measured on this machine on 2026-11-27)"
+    )
+    assert drawn[1] == (
+        "[nb] non-linear FE runs: 1/3 computed (1 cached) on 2 workers, one every 40 s, ETA 80 s"
+    )
+    assert (
+        drawn[2]
+        == "[nb] non-linear FE runs: 3 computed in 1.8 min on 2 workers, 1 read from the cache"
+    )
+    assert "Executing notebook with kernel: python3" in err
+    assert list((tmp_path / "runs" / "nb" / "seed=2").glob(".*.progress")) == []  # cleaned up
+
+
+def test_papermill_prints_no_warning_a_user_cannot_act_on(tmp_path: Path) -> None:
+    """Neither papermill's warning of an output name without ``.ipynb`` (the Makefile executes
+    into ``<name>.tmp.ipynb``) nor the kernel's of TCP without encryption (IPC transport)."""
+    import subprocess
+
+    import nbformat
+
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [
+        nbformat.v4.new_code_cell("x = 1", metadata={"tags": ["parameters"]}),
+        nbformat.v4.new_code_cell("print(2 * x)"),
+    ]
+    nb.metadata["kernelspec"] = {"name": "python3", "language": "python", "display_name": "P"}
+    nbformat.write(nb, tmp_path / "nb.ipynb")
+    out = tmp_path / f"nb{execute.PARTIAL_SUFFIX}"
+    cmd = execute.papermill_command(tmp_path / "nb.ipynb", out, ["-p", "x", "21"])
+    done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "Warning" not in done.stderr and "WARNING" not in done.stderr, done.stderr
+    assert "without encryption" not in done.stderr and "does not end in" not in done.stderr
+    assert nbformat.read(out, as_version=4).cells[-1].outputs[0]["text"] == "42\n"
+
+
+def test_the_makefile_executes_into_a_name_papermill_accepts() -> None:
+    makefile = (REPO_ROOT / "Makefile").read_text()
+    outs = re.findall(r"\$\(PIPELINE\) execute .*?--out (\S+)", makefile)
+    assert outs == ["$(BUILD)/executed/$*.tmp.ipynb"]
+    assert outs[0].endswith(execute.PARTIAL_SUFFIX)
+    assert f"mv {outs[0]} $@" in makefile

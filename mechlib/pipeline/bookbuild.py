@@ -33,7 +33,7 @@ from mechlib.pipeline import bundle, bundleruns, landing, provenance, storecmd
 from mechlib.pipeline.book import explorer, methods, reportpage, verdictrole
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.pipeline.chapters import MAIN_PARAMETERS
-from mechlib.pipeline.execute import fe_summary_path
+from mechlib.pipeline.execute import PARTIAL_SUFFIX, fe_summary_path
 from mechlib.reporting import artefacts, claimlist, verdicts
 
 REPORT_HEADER = """---
@@ -141,6 +141,8 @@ def copy_chapters(
     chapters.mkdir(parents=True, exist_ok=True)
     sections = {}
     for nb_path in sorted(Path(executed).glob("*.ipynb")):
+        if nb_path.name.endswith(PARTIAL_SUFFIX):  # a notebook still executing, or failed
+            continue
         nb, sections[nb_path.stem] = prepare_notebook(
             json.loads(nb_path.read_text()), nb_path.stem, REPO_ROOT
         )
@@ -229,11 +231,12 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         json.dumps(claimlist.verdict_table(judged), indent=1, ensure_ascii=False) + "\n",
     )
     has_store = (STORE_DIR / "manifest.json").is_file()  # every FE run the book reads
+    runs = bundleruns.store_tables(STORE_DIR) if has_store else {}
     data = bundle.write_bundle(
         records,
         generated / bundle.NAME,
-        extra=bundleruns.store_tables(STORE_DIR) if has_store else {},
-        extra_readme=bundleruns.README if has_store else "",
+        extra=runs,
+        extra_readme=bundleruns.readme(runs) if has_store else "",
     )
     landing.write_landing(
         records,

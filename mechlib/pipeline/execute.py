@@ -40,18 +40,20 @@ def papermill_command(
     args : sequence of str
         Further papermill arguments (``-p name value`` …), appended as given.
     python : str
-        Interpreter of the environment whose ``papermill`` script is used (default: this one).
+        Interpreter of the environment whose papermill runs the notebook (default: this one).
 
     Returns
     -------
     list of str
-        ``papermill -k python3 --cwd <notebook folder> --no-progress-bar <notebook> <output>
-        <args>``.
+        ``<python> -m mechlib.pipeline.papermillrun -k python3 --cwd <notebook folder>
+        --no-progress-bar <notebook> <output> <args>``: papermill's command line, its kernel on
+        IPC transport (:mod:`mechlib.pipeline.papermillrun`).
     """
-    papermill = str(Path(python).with_name("papermill"))
     notebook = Path(notebook)
     return [
-        papermill,
+        str(python),
+        "-m",
+        "mechlib.pipeline.papermillrun",
         "-k",
         "python3",
         "--cwd",
@@ -139,6 +141,10 @@ def input_arguments(
     return ["-y", yaml.safe_dump(values, sort_keys=False)] if values else []
 
 
+#: the end of the name a notebook is executed into before it is complete (the Makefile's
+#: ``build/executed/<name>.tmp.ipynb``: papermill warns of an output not ending in ``.ipynb``)
+PARTIAL_SUFFIX = ".tmp.ipynb"
+
 #: how often a notebook's kernel is started when it dies before running any cell (two kernels
 #: started at the same moment can race for their ports: seen once in a clean-clone test run)
 KERNEL_START_ATTEMPTS = 3
@@ -158,14 +164,22 @@ def fe_summary_path(output: Path, name: str) -> Path:
     return Path(output).parent / f"{name}.fe.json"
 
 
+def progress_file(output: Path) -> Path:
+    """The file the FE campaigns of a notebook executed into ``output`` report their progress to
+    (``$MECHLIB_PROGRESS``, :mod:`mechlib.progress`): ``.<output name>.progress`` beside it,
+    absolute (the kernel runs in the notebooks' folder)."""
+    output = Path(output)
+    return output.with_name(f".{output.name}.progress").resolve()
+
+
 def execute(notebook: Path, output: Path, records: Path, args: Sequence[str] = ()) -> int:
     """Execute ``notebook`` into ``output`` with papermill ``args`` (a profile's ``-f`` file …),
     its record into ``records`` and its chapter inputs read from there; papermill's exit code."""
     records = Path(records).resolve()  # absolute: the kernel runs in the notebooks' folder
     inputs = input_arguments(Path(notebook).stem, records, given_parameters(args), strict=True)
     cmd = papermill_command(Path(notebook), Path(output), [*inputs, *args])
-    progress = Path(output).with_name(f".{Path(output).name}.progress")
-    env = dict(os.environ, **{RECORDS_ENV: str(records), PROGRESS_ENV: str(progress.resolve())})
+    progress = progress_file(Path(output))
+    env = dict(os.environ, **{RECORDS_ENV: str(records), PROGRESS_ENV: str(progress)})
     for attempt in range(KERNEL_START_ATTEMPTS):
         proc = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
         said = []

@@ -2,7 +2,10 @@
 
 ``python -m mechlib.pipeline run --notebook notebooks/X.ipynb --out build/runs -- -p name value``
 executes the notebook with papermill into ``build/runs/X/<parameters>/`` with its record there
-too, so the default run in ``build/executed`` and ``build/records`` is never overwritten.
+too, so the default run in ``build/executed`` and ``build/records`` is never overwritten. Its FE
+campaigns' progress is drawn as the build's is
+(:class:`~mechlib.pipeline.progressview.ProgressView`: size and expected time before a campaign
+starts, then one line with its ETA on a terminal, a line every 30 s in a log).
 
 The arguments after ``--`` are papermill's: parameters as ``-p name value``, ``-r name value``
 (raw string), ``-y 'yaml mapping'``, ``-f file.yaml`` or ``-b base64-yaml``, and any other
@@ -28,9 +31,10 @@ import sys
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
-from mechlib.paths import DEFAULT_BUILD, RECORDS_ENV
-from mechlib.pipeline.execute import input_arguments, papermill_command
+from mechlib.paths import DEFAULT_BUILD, PROGRESS_ENV, RECORDS_ENV
+from mechlib.pipeline.execute import input_arguments, papermill_command, progress_file
 from mechlib.pipeline.parameters import check_parameter_names, notebook_parameters
+from mechlib.pipeline.progressview import ProgressView
 
 #: First line of a Python traceback on stderr: what follows is held back (see :func:`relay`).
 TRACEBACK_START = "Traceback (most recent call last):"
@@ -95,12 +99,17 @@ def main(argv: list[str] | None = None) -> int:
     folder.mkdir(parents=True, exist_ok=True)
     out_nb = folder / args.notebook.name
     out_nb.unlink(missing_ok=True)  # a failure is read from this run's notebook, never an older one
-    env = dict(os.environ, **{RECORDS_ENV: str(folder)})
+    progress = progress_file(out_nb)
+    env = dict(os.environ, **{RECORDS_ENV: str(folder), PROGRESS_ENV: str(progress)})
     cmd = papermill_command(args.notebook, out_nb, [*inputs, *extra])
-    with subprocess.Popen(
-        cmd, env=env, stderr=subprocess.PIPE, encoding="utf-8", errors="replace"
-    ) as proc:
+    with (
+        ProgressView(progress, args.notebook.stem),  # the FE campaigns' progress, as execute's
+        subprocess.Popen(
+            cmd, env=env, stderr=subprocess.PIPE, encoding="utf-8", errors="replace"
+        ) as proc,
+    ):
         held = relay(proc.stderr, sys.stderr.write)
+    progress.unlink(missing_ok=True)
     message = None
     if proc.returncode and out_nb.exists():
         try:
