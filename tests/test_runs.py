@@ -300,7 +300,8 @@ def test_make_run_draws_the_progress_of_its_fe_campaigns(
 
 def test_papermill_prints_no_warning_a_user_cannot_act_on(tmp_path: Path) -> None:
     """Neither papermill's warning of an output name without ``.ipynb`` (the Makefile executes
-    into ``<name>.tmp.ipynb``) nor the kernel's of TCP without encryption (IPC transport)."""
+    into ``<name>.tmp.ipynb``) nor the kernel's of TCP without encryption (its log at ERROR
+    level)."""
     import subprocess
 
     import nbformat

@@ -9,7 +9,7 @@ Modules
 -------
 chapters    the chapters' order and the inputs one takes from another's record (declared once)
 execute     the one papermill command line; one notebook executed with its chapter inputs
-papermillrun  papermill's command line as the build runs it (the kernel on IPC transport)
+papermillrun  papermill's command line as the build runs it (the kernel's log at ERROR level)
 parameters  a notebook's parameter names and the papermill arguments that set them
 runs        ``make run``: one notebook with new parameters into ``build/runs``
 rerun       ``make rerun`` and the determinism check (byte-identical records, cold)

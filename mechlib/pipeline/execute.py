@@ -46,8 +46,8 @@ def papermill_command(
     -------
     list of str
         ``<python> -m mechlib.pipeline.papermillrun -k python3 --cwd <notebook folder>
-        --no-progress-bar <notebook> <output> <args>``: papermill's command line, its kernel on
-        IPC transport (:mod:`mechlib.pipeline.papermillrun`).
+        --no-progress-bar <notebook> <output> <args>``: papermill's command line, its kernel's
+        log at ERROR level (:mod:`mechlib.pipeline.papermillrun`).
     """
     notebook = Path(notebook)
     return [
