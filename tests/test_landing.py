@@ -44,11 +44,13 @@ def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
     assert pagecheck.count_table(page) == counts
     assert counts[cat.CAT_REDRAWN] == len(verdicts.REDRAWN)
     # Table 4's units against Eq 8, Table 1's levels against Tables 2 and 4, Figs 6-7's list
-    # against Table 2's effects
-    assert counts[cat.CAT_CONSISTENT_THESIS] == 3
+    # against Table 2's effects, Table 3's |main effects| recomputed from the printed Table 2
+    assert counts[cat.CAT_CONSISTENT_THESIS] == 4
+    assert counts[cat.CAT_REPRODUCED] == 0  # no independent reproduction: no drawing, no files
     assert (
-        counts[cat.CAT_CONSTRUCTION] == 13 and counts[cat.CAT_OURS] == 32
-    )  # five on Beyond the HexFlex, six on our FE of the parallelogram
+        counts[cat.CAT_CONSTRUCTION] == 13 and counts[cat.CAT_OURS] == 30
+    )  # five on Beyond the HexFlex, six on our FE of the parallelogram; (iii) on the 3-RRR and
+    # the 6-UPS counted once each, whatever the budget
     report_page = "# Report\n\n" + verdicts.counts_table(counts) + "\n"
     assert pagecheck.counts_problems(page, report_page, rows) == []
     group = verdicts.COUNT_GROUPS[0][0]
@@ -63,10 +65,13 @@ def test_landing_counts_equal_the_records_and_a_report_with_the_same_table(
 def test_our_hypothesis_is_not_counted_among_the_thesis_claims(page: str) -> None:
     assert "({category}`our finding beyond the thesis`). On our FE model, which has Eq 8" in page
     claims = pagecheck.count_table(page)
-    # the claims of the thesis are the registry's: chapter 2's five, and chapter 3's three on
-    # the 5R at three budgets; findings of ours are counted apart
-    thesis = [c for c in claimlist.CLAIMS.values() if c.source == cat.SOURCE_THESIS]
-    assert sum(claims[c] for c in cat.CLAIM_CATEGORIES) == len(thesis) == 14
+    # the claims of the thesis are the registry's, each counted once: chapter 2's five, and
+    # chapter 3's three on the 5R ((iii) judged at three budgets); findings of ours apart
+    thesis = {claimlist.claim_group(c) for c in claimlist.CLAIMS.values() if c.source == "thesis"}
+    assert sum(claims[c] for c in cat.CLAIM_CATEGORIES) == len(thesis) == 8
+    # (i) and (ii) are arithmetic or settled by construction: counted apart from the tested
+    assert claims[cat.CAT_CLAIM_CONSTRUCTION] == 2
+    assert sum(claims[c] for c in cat.TESTED_CLAIM_CATEGORIES) == 6
 
 
 def test_findings_quote_the_records_and_the_registry_not_typed_words(
@@ -77,7 +82,7 @@ def test_findings_quote_the_records_and_the_registry_not_typed_words(
     text = landing.landing_markdown(changed, "ci")
     assert "workspace RMS 42.0 µm by D&C against 17.0 µm" in text
     # verdict words are quoted from the claims registry by id, never written into a finding
-    for claim_id in ("ch2.linear", "ch2.eq6", "ch3.iii.5r.table8", "ch3.ii.5r.table8"):
+    for claim_id in ("ch2.linear", "ch2.eq6", "ch3.iii.5r.table8", "ch3.ii.5r"):
         assert f"{{verdict}}`{claim_id}`" in text
     assert pagecheck.markdown_problems(text, "intro.md") == []
 
@@ -139,7 +144,9 @@ def test_rollup_counts_each_named_artefact_and_summarises_values() -> None:
     )
     assert by_name["Table 3"]["verdict"] == "inconsistency inside the thesis"
     assert by_name["Table 3"]["counts"] == {"reproduced": 1, "inconsistency inside the thesis": 1}
-    assert by_name["Table 6"]["rows"] == by_name["Table 8"]["rows"] == 1
+    # a row naming two artefacts counts under the first only; the other names where
+    assert (by_name["Table 6"]["rows"], by_name["Table 8"]["rows"]) == (1, 0)
+    assert by_name["Table 8"]["counted_under"] == ["Table 6"]
     assert by_name["Fig 1"]["verdict"] == verdicts.NO_ROW
     assert "Fig 1: no report row" in pagecheck.artefact_problems(rows)
     assert "Table 3: no report row" not in pagecheck.artefact_problems(rows)
@@ -229,11 +236,25 @@ def test_the_view_counts_every_campaign_of_a_notebook(tmp_path) -> None:
 def test_the_counts_sentence_weighs_claims_not_rows(records: dict[str, dict[str, Any]]) -> None:
     rows = verdicts.all_rows(records)
     ids = verdicts.thesis_claim_ids(rows)
-    assert len(ids) == verdicts.category_counts(rows)[cat.CAT_SUPPORTED] + sum(
-        verdicts.category_counts(rows)[c] for c in (cat.CAT_NOT_SUPPORTED, cat.CAT_MIXED)
-    )  # the rows the counts table calls claims of the thesis
+    counts = verdicts.category_counts(rows)
     n_rows, distinct, several = claimlist.thesis_claims_judged(ids)
-    assert n_rows > distinct >= several > 0  # chapter 3's claims: a row per budget
-    text = landing.counts_sentence(verdicts.category_counts(rows), ids)
-    assert f"the {n_rows} rows that judge a claim of the thesis judge {distinct} distinct" in text
-    assert "distinct claims" not in landing.counts_sentence(verdicts.category_counts(rows))
+    # the counts table counts the distinct claims the rows judge
+    assert distinct == sum(counts[c] for c in cat.CLAIM_CATEGORIES) == 8
+    assert n_rows > distinct >= several == 1  # (iii): a row per budget
+    text = landing.counts_sentence(ids)
+    assert f"The report's {n_rows} rows on the thesis's claims judge {distinct} distinct" in text
+    assert "distinct claims" not in landing.counts_sentence()
+
+
+def test_the_roll_up_lists_claims_apart_and_never_under_two_artefacts(
+    records: dict[str, dict[str, Any]],
+) -> None:
+    rows = verdicts.all_rows(records)
+    entries = verdicts.rollup(rows)
+    named = [r for r in rows if r.artefacts]  # rows of the thesis's artefacts
+    assert sum(e["rows"] for e in entries) == len(named)  # each under one artefact
+    by_name = {e["artefact"]: e for e in entries}
+    # Eq 7's verdict is its values' (S_T fitted against Eq 8), the real-time claim is quoted apart
+    assert by_name["Eq 7"]["verdict"] == cat.CAT_CONSTRUCTION
+    assert by_name["Eq 7"]["claims"] == {"ch2.realtime": ["ch2.realtime"]}
+    assert by_name["Fig 14"]["counted_under"] == ["Fig 13"]

@@ -189,7 +189,7 @@ def report_markdown(
         "",
         verdicts.counts_table(verdicts.category_counts(every), reportpage.category_markup),
         "",
-        landing.counts_sentence(verdicts.category_counts(every), verdicts.thesis_claim_ids(every)),
+        landing.counts_sentence(verdicts.thesis_claim_ids(every)),
         "",
         "The verdict per thesis artefact, rolled up from these rows, is on the "
         "[first page](intro.md).",

@@ -50,10 +50,26 @@ def for_page(page: str) -> list[ClaimSpec]:
 
 
 def claim_group(spec: ClaimSpec) -> str:
-    """The claim ``spec`` judges whatever its setting: a claim judged per setting (chapter 3's
-    at each measurement budget) names its setting in the last part of its id
-    (``ch3.iii.5r.table8`` → ``ch3.iii.5r``); any other claim is its own."""
-    return spec.id.rsplit(".", 1)[0] if spec.setting else spec.id
+    """The claim ``spec`` judges whatever its setting: the group it declares (chapter 3's (iii)
+    at each measurement budget: ``ch3.iii.5r.table8`` → ``ch3.iii.5r``); any other claim, with a
+    setting or not, is its own."""
+    return spec.group or spec.id
+
+
+def group_word(words: Iterable[str]) -> str:
+    """The word of a claim judged in several settings, from its word in each: the word they
+    share, else :data:`~mechlib.reporting.claims.MIXED` (the evidence splits across settings).
+
+    Raises
+    ------
+    ValueError
+        For no word, or a word no claim reads.
+    """
+    found = list(words)
+    unknown = [w for w in found if w not in claims.WORDS]
+    if not found or unknown:
+        raise ValueError(f"words must be some of {claims.WORDS}, got {found}")
+    return found[0] if len(set(found)) == 1 else claims.MIXED
 
 
 def thesis_claims_judged(claim_ids: Iterable[str]) -> tuple[int, int, int]:

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 from mechlib.parallelogram.metamethod import BUDGET_PCT
 from mechlib.reporting import categories as cat
-from mechlib.reporting.claims import ClaimSpec, at_least, at_most, each_within, greater, within
+from mechlib.reporting.claimrules import at_least, at_most, each_within, greater, within
+from mechlib.reporting.claims import ClaimSpec
 
 #: the page's notebook
 PF = "parallelogram_fe"

@@ -13,9 +13,8 @@ from __future__ import annotations
 from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR
 from mechlib.parallelogram import comparison as para
 from mechlib.reporting import categories as cat
-from mechlib.reporting.claims import (
+from mechlib.reporting.claimrules import (
     PAIRED_MIN_SHARE,
-    ClaimSpec,
     all_above,
     at_least,
     at_most,
@@ -24,9 +23,12 @@ from mechlib.reporting.claims import (
     greater,
     is_true,
     paired,
+    with_construction,
     within,
 )
+from mechlib.reporting.claims import ClaimSpec
 from mechlib.reporting.mechanismclaims import parallelogram_fe_claims
+from mechlib.reporting.thesisclaims import CONDITIONING_BY_CONSTRUCTION, FLOPS_BY_CONSTRUCTION
 
 OURS = cat.SOURCE_OURS
 VX, FB, B5R = "virtual_experiments", "fivebar_identification", "beyond_5r"
@@ -91,6 +93,7 @@ def _beyond_5r() -> list[ClaimSpec]:
                     ),
                     f"{label}: {{n:.0f}} shared poses",
                     {"n": ("budgets.shared", (j, k))},
+                    group=f"ours.b5r.{slug}.iii",
                 )
             )
         specs += [
@@ -101,11 +104,14 @@ def _beyond_5r() -> list[ClaimSpec]:
                 f"(i) on the {name}, inverting D&C's normal matrices costs fewer flops",
                 B5R,
                 (
-                    exceeds(
-                        "normal-matrix inversion flops, traditional / D&C",
-                        ("cost.flop_ratio", j),
-                        1.0,
-                        "ratio",
+                    with_construction(
+                        exceeds(
+                            "normal-matrix inversion flops, traditional / D&C",
+                            ("cost.flop_ratio", j),
+                            1.0,
+                            "ratio",
+                        ),
+                        FLOPS_BY_CONSTRUCTION,
                     ),
                 ),
             ),
@@ -116,11 +122,14 @@ def _beyond_5r() -> list[ClaimSpec]:
                 f"(ii) on the {name}, D&C's identification matrices are better conditioned",
                 B5R,
                 (
-                    greater(
-                        "inverse condition number of the column-scaled identification matrix",
-                        ("cost.conditioning", (j, 0)),
-                        ("cost.conditioning", (j, 1)),
-                        ("D&C's worst leg", "the traditional total matrix"),
+                    with_construction(
+                        greater(
+                            "inverse condition number of the column-scaled identification matrix",
+                            ("cost.conditioning", (j, 0)),
+                            ("cost.conditioning", (j, 1)),
+                            ("D&C's worst leg", "the traditional total matrix"),
+                        ),
+                        CONDITIONING_BY_CONSTRUCTION,
                     ),
                 ),
             ),
