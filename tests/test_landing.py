@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from mechlib.pipeline import landing, pagecheck
+from mechlib.pipeline import landing, outcome, pagecheck
 from mechlib.reporting import categories as cat
 from mechlib.reporting import claimlist, report, verdicts
 
@@ -258,3 +258,30 @@ def test_the_roll_up_lists_claims_apart_and_never_under_two_artefacts(
     assert by_name["Eq 7"]["verdict"] == cat.CAT_CONSTRUCTION
     assert by_name["Eq 7"]["claims"] == {"ch2.realtime": ["ch2.realtime"]}
     assert by_name["Fig 14"]["counted_under"] == ["Fig 13"]
+
+
+def test_the_landing_opens_with_the_outcome_generated_from_the_registry(
+    records: dict[str, dict[str, Any]], page: str
+) -> None:
+    heads = [line for line in page.splitlines() if line.startswith("## ")]
+    assert heads[:2] == [outcome.HEADING, "## Main findings"]
+    assert page.index(outcome.HEADING) < page.index("| Artefact |")
+    text = page[page.index(outcome.HEADING) : page.index("## Main findings")]
+    assert "No published value was reproduced independently" in text
+    # each claim of the thesis once, under the head its word gives it
+    groups = {claimlist.claim_group(c) for c in claimlist.CLAIMS.values() if c.source == "thesis"}
+    for group in groups:
+        assert text.count(f"{{verdict}}`{group}") >= 1, group
+    by_construction = text[text.index("true only by construction") : text.index("supported when")]
+    assert "{verdict}`ch3.i.5r`" in by_construction and "{verdict}`ch3.ii.5r`" in by_construction
+    failing = text[text.index("fail when tested") :]
+    assert "{verdict}`ch2.linear`, on a geometrically non-linear FE model" in failing
+    assert "41.9 % of range (at most 1 % of range)" in failing
+    assert "  - Table 2: Table 2 is printed in nm and mrad" in text
+    # a claim that fails in another build moves to the failing list, from the records alone
+    changed = copy.deepcopy(records)
+    changed["virtual_experiments"]["timings"]["latency.st_forward_us"] = 5e3
+    changed["virtual_experiments"]["values"]["claims.ch2.realtime"]["value"] = "not supported"
+    moved = landing.landing_markdown(changed, "ci")
+    moved = moved[moved.index("fail when tested") : moved.index("## Main findings")]
+    assert "{verdict}`ch2.realtime`" in moved

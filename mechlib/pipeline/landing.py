@@ -1,9 +1,11 @@
 """The book's landing page, generated from the records: readable in thirty seconds.
 
-:func:`write_landing` writes a MyST page with what the thesis is (prose from
+:func:`write_landing` writes a MyST page that opens with the outcome
+(:mod:`mechlib.pipeline.outcome`, from the claims registry and the report rows), then the main
+findings in a sentence each with a link to their evidence, then what the thesis is (prose from
 :data:`THESIS_TEXT`, which states no result), one table with a verdict per thesis artefact
-(:func:`mechlib.reporting.verdicts.rollup`), the counts per verdict category, the main findings in
-a sentence each with a link to their evidence, and the profile the book was built with.
+(:func:`mechlib.reporting.verdicts.rollup`), the counts per verdict category, and the profile
+the book was built with.
 
 Every result the page states is read from the records: a finding (:class:`Finding`) quotes
 recorded values, and is shown only when the report row it rests on has one of the categories
@@ -20,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from mechlib.pipeline import bundle as bundle_mod
+from mechlib.pipeline import outcome
 from mechlib.pipeline.book import reportpage
 from mechlib.pipeline.findings import FINDINGS, Finding, Quote
 from mechlib.pipeline.provenance import DEFAULT_PROFILE
@@ -32,12 +35,18 @@ _PROFILE = re.compile(r"^[A-Za-z0-9_-]+$")
 #: the record keys that hold a chapter's parameters
 PARAMETER_PREFIX = "parameters."
 
-THESIS_TEXT = """\
+TITLE_TEXT = """\
 # An executable reproduction of a 2010 thesis on mechanism modelling
 
 This book re-derives, from code that runs whenever the book is built, the tables, figures and
 equations of a 2010 master's thesis from EAFIT University (Medellín) on predicting small
-quasi-static deformations of mechanisms. The thesis has two studies.
+quasi-static deformations of mechanisms: a compliant six-axis positioner (chapter 2) and the
+kinematic identification of a planar five-bar (chapter 3). What follows first is the outcome,
+then the main findings; the thesis, and a verdict per artefact of it, come after.
+"""
+
+THESIS_TEXT = """\
+## The thesis, and how it is reproduced
 
 **Chapter 2 — design of computer experiments on a compliant mechanism.** The HexFlex, a flat
 aluminium six-degree-of-freedom nano-positioner, is modelled with finite elements and pushed at
@@ -69,7 +78,7 @@ LEGEND = (
     "so agreement is expected, not evidence. *Inconsistency inside the thesis*: published "
     "values contradict each other; *consistent inside the thesis*: published values set against "
     "each other agree (no computation of ours is tested). A claim of the thesis reads the word of "
-    "its tests that could fail; a part that cannot fail (it holds by construction on our model, "
+    "its tests that could fail; a part that cannot fail (true by construction on our model, "
     "or is arithmetic on published values) is shown, never counted, and a claim with no other "
     "part is *consistent by construction*, counted apart. *Computed*: a figure or number of the "
     "thesis that we compute with nothing published to compare it with. *Redrawn*: a diagram of "
@@ -300,6 +309,13 @@ def landing_markdown(
     data_text = bundle_mod.link_text(bundle, bundle_bytes, bundle_members) if bundle else ""
     return "\n".join(
         [
+            TITLE_TEXT,
+            outcome.outcome_markdown(claimlist.judge(records), rows),
+            "",
+            "## Main findings",
+            "",
+            *(findings or ["No finding could be stated from this build's records."]),
+            "",
             THESIS_TEXT,
             "## Verdict per thesis artefact",
             "",
@@ -312,10 +328,6 @@ def landing_markdown(
             counts_sentence(verdicts.thesis_claim_ids(rows)),
             "",
             verdicts.counts_table(counts, reportpage.category_markup),
-            "",
-            "## Main findings",
-            "",
-            *(findings or ["No finding could be stated from this build's records."]),
             "",
             "## This build",
             "",

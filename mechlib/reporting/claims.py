@@ -167,13 +167,30 @@ class ClaimSpec:
 
 @dataclass(frozen=True)
 class Verdict:
-    """A claim's verdict as computed from the records."""
+    """A claim's verdict as computed from the records.
+
+    Attributes
+    ----------
+    spec : ClaimSpec
+        The claim.
+    word : str
+        Its word (refused unless its parts that could fail give it: :func:`check_word`).
+    holds : tuple of bool
+        Per part, whether it holds.
+    evidence : str
+        Every part in words, marked when it cannot fail.
+    setting : str
+        The setting, filled in from the records.
+    described : tuple of str
+        Per part, its evidence in words (without label), e.g. for a one-line summary.
+    """
 
     spec: ClaimSpec
     word: str
     holds: tuple[bool, ...]
     evidence: str
     setting: str
+    described: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         check_word(self.spec, self.holds, self.word)
@@ -290,4 +307,6 @@ def evaluate(spec: ClaimSpec, values: Mapping[str, Any]) -> Verdict:
         f"{t.describe(*v)} ({'met' if h else 'not met'})"
         for (t, v), h in zip(read_parts, holds, strict=True)
     )
-    return Verdict(spec, verdict_word(spec.source, holds, spec.counted), holds, evidence, setting)
+    word = verdict_word(spec.source, holds, spec.counted)
+    described = tuple(t.describe(*v) for t, v in read_parts)
+    return Verdict(spec, word, holds, evidence, setting, described)
