@@ -276,7 +276,7 @@ def test_the_landing_opens_with_the_outcome_generated_from_the_registry(
     assert "{verdict}`ch3.i.5r`" in by_construction and "{verdict}`ch3.ii.5r`" in by_construction
     failing = text[text.index("fail when tested") :]
     assert "{verdict}`ch2.linear`, on a geometrically non-linear FE model" in failing
-    assert "41.9 % of range (at most 1 % of range)" in failing
+    assert "41.9 % of full scale (at most 1 % of full scale)" in failing
     assert "  - Table 2: Table 2 is printed in nm and mrad" in text
     # a claim that fails in another build moves to the failing list, from the records alone
     changed = copy.deepcopy(records)

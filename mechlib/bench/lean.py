@@ -5,7 +5,7 @@ magnitudes it achieves (:func:`mechlib.hexflex.studies.leanmesh.fit_lean`). Both
 seeded non-linear runs in one process, one after the other, with one BLAS thread: the first
 ``N_RUNS`` of the DOE chapter's validation draw (seed 2010, uniform in ±1 N) and its
 linear-range sweep along the first run. Accuracy as the non-linear family chapter states it
-(:func:`mechlib.hexflex.studies.leanmesh.compare`: poses as % of each component's range over the
+(:func:`mechlib.hexflex.studies.leanmesh.compare`: poses as % of full scale over the
 1000-run draw, departures from linearity as % of themselves); speed is the mean wall time of the
 ``N_RUNS`` runs.
 """

@@ -10,7 +10,7 @@ are the thesis's own claims: :mod:`mechlib.reporting.thesisclaims`). Registered 
 
 from __future__ import annotations
 
-from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR
+from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR, FULL_SCALE
 from mechlib.parallelogram import comparison as para
 from mechlib.reporting import categories as cat
 from mechlib.reporting.claimrules import (
@@ -294,7 +294,7 @@ def _ours_chapter2() -> list[ClaimSpec]:
             (
                 at_least(
                     "the smallest ratio, over the members and components, of the non-linear "
-                    "departure to the published MAXABS (both as shares of the range)",
+                    "departure to the published MAXABS (both in % of full scale)",
                     "family.min_departure_over_published",
                     DISTINCT_ERROR_FACTOR,
                     "times",
@@ -313,11 +313,11 @@ def _ours_chapter2() -> list[ClaimSpec]:
                     "the best compared model",
                     ("compare.worst_pct", "min"),
                     "parameters.budget_pct",
-                    "% of range",
+                    FULL_SCALE,
                     "worst error",
                 ),
             ),
-            "budget {b:g} % of each pose component's range, {n:.0f} held-out runs",
+            "budget {b:g} % of full scale, {n:.0f} held-out runs",
             {"b": "parameters.budget_pct", "n": "parameters.validation_runs"},
         ),
         ClaimSpec(
@@ -332,11 +332,11 @@ def _ours_chapter2() -> list[ClaimSpec]:
                     "linear S_T fitted to the non-linear Table 4 runs",
                     ("compare.worst_pct", 0),
                     "parameters.budget_pct",
-                    "% of range",
+                    FULL_SCALE,
                     "worst error",
                 ),
             ),
-            "budget {b:g} % of each pose component's range, {n:.0f} held-out runs",
+            "budget {b:g} % of full scale, {n:.0f} held-out runs",
             {"b": "parameters.budget_pct", "n": "parameters.validation_runs"},
         ),
         ClaimSpec(
@@ -351,11 +351,11 @@ def _ours_chapter2() -> list[ClaimSpec]:
                     "the distilled polynomial",
                     "realtime.best.worst_pct",
                     ("parameters.goals", 0),
-                    "% of range",
+                    FULL_SCALE,
                     "worst error",
                 ),
             ),
-            "goal {g:g} % of each pose component's range, {n:.0f} held-out runs",
+            "goal {g:g} % of full scale, {n:.0f} held-out runs",
             {"g": ("parameters.goals", 0), "n": "parameters.validation_runs"},
         ),
         ClaimSpec(

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 from mechlib import published as pub
 from mechlib.doe import UNIFORM_SHARE_MAX
-from mechlib.metamodels.metrics import SOLVER_PRECISION_PCT
+from mechlib.metamodels.metrics import FULL_SCALE, SOLVER_PRECISION_PCT
+from mechlib.metamodels.realtime import DEADLINE_US
 from mechlib.reporting import categories as cat
 from mechlib.reporting.claimrules import (
     at_most,
@@ -34,12 +35,12 @@ VX, DOE, FB = "virtual_experiments", "published_doe", "fivebar_identification"
 
 #: a second-order term of Eq 6 is "negligible" below this share of the largest linear one (ours)
 NEGLIGIBLE_RATIO = 0.01
-#: a linear model is "linear enough" while its worst error stays within this share of each pose
-#: component's range (the meta-model page's accuracy budget)
+#: a linear model is "linear enough" while its worst error stays within this many % of full
+#: scale (:data:`mechlib.metamodels.metrics.FULL_SCALE`; the meta-model page's accuracy budget)
 LINEAR_BUDGET_PCT = 1.0
-#: the period of a 10 kHz control loop, which a real-time model must evaluate well within [µs]
-#: (piezo-driven nano-positioners are commonly controlled at 10–50 kHz)
-CONTROL_PERIOD_US = 100.0
+#: the book's one real-time deadline, the period of a 10 kHz control loop [µs]
+#: (:data:`mechlib.metamodels.realtime.DEADLINE_US`, where its reason is given)
+CONTROL_PERIOD_US = DEADLINE_US
 
 #: why a part on the linear FE model cannot fail
 LINEAR_BY_CONSTRUCTION = "a linear FE model is linear, and S_T is fitted to it"
@@ -75,7 +76,7 @@ def _chapter2() -> list[ClaimSpec]:
                     nonlinear_fe,
                     "table5.nonlinear.max_range_pct",
                     LINEAR_BUDGET_PCT,
-                    "% of range",
+                    FULL_SCALE,
                     "the linear meta-model's worst error",
                 ),
             ),
@@ -147,7 +148,7 @@ def _chapter2() -> list[ClaimSpec]:
                     f"{nonlinear_fe}, error",
                     "table5.nonlinear.max_range_pct",
                     pub.TABLE5_PETRI_REL_ERROR_PCT,
-                    "% of range",
+                    FULL_SCALE,
                     "worst",
                 ),
             ),

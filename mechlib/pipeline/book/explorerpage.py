@@ -179,7 +179,7 @@ def page_markdown(
             f"model of the non-linear HexFlex: a Legendre polynomial of total degree "
             f"{data['degree']} ({data['terms']} terms a pose component) fitted to the "
             f"{v['teacher']}. On {heldout} held-out non-linear finite-element runs with forces "
-            f"within ±{amp:g} N it misses by at most {worst:.3g} % of a pose component's range. "
+            f"within ±{amp:g} N it misses by at most {worst:.3g} % of full scale. "
             "This page evaluates that model in your browser. Set the six actuator forces (the "
             "thesis's names: tab T1 to T3, direction D1 in the plate's plane, D2 out of it) and "
             "it shows the stage's pose by the model beside the pose by the linear S_T of Eq 8, "
