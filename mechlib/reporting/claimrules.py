@@ -8,6 +8,7 @@ never counted). The claims are registered in :mod:`mechlib.reporting.thesisclaim
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -38,6 +39,8 @@ def paired(label: str, share: Ref, p_value: Ref, what: str = "D&C") -> Test:
         (share, p_value),
         lambda s, p: s > PAIRED_MIN_SHARE and p < PAIRED_MAX_P,
         lambda s, p: f"{what} better in {100 * s:.0f} % of the paired trials, Wilcoxon p = {p:.2g}",
+        kind="paired",
+        limit={"share above": PAIRED_MIN_SHARE, "Wilcoxon p below": PAIRED_MAX_P},
     )
 
 
@@ -52,12 +55,16 @@ def at_most(
             (ref,),
             lambda v: float(_num(v).max()) < limit,
             lambda v: f"{what} {_q(float(_num(v).max()), unit)} (below {_q(limit, unit, 'g')})",
+            kind="at_most",
+            limit=limit,
         )
     return Test(
         label,
         (ref,),
         lambda v: float(_num(v).max()) <= limit,
         lambda v: f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(limit, unit, '.4g')})",
+        kind="at_most",
+        limit=limit,
     )
 
 
@@ -71,6 +78,8 @@ def within(label: str, ref: Ref, limit: Ref, unit: str, what: str = "largest") -
         lambda v, lim: (
             f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(float(lim), unit, '.4g')})"
         ),
+        kind="within",
+        limit=None,
     )
 
 
@@ -85,6 +94,8 @@ def each_within(label: str, ref: Ref, limits: Ref, unit: str) -> Test:
             f"{_q(a, unit)} (at most {_q(b, unit, '.4g')})"
             for a, b in zip(_num(v).ravel(), _num(lim).ravel(), strict=True)
         ),
+        kind="each_within",
+        limit=None,
     )
 
 
@@ -102,6 +113,8 @@ def at_least(
         lambda v: (
             f"{what} {float(getattr(_num(v), reduce)()):.3g} {unit} (at least {limit:.4g} {unit})"
         ),
+        kind="at_least",
+        limit=limit,
     )
 
 
@@ -114,6 +127,8 @@ def timed_below(label: str, ref: Ref, limit: float, unit: str) -> Test:
         (ref,),
         lambda v: float(v) < limit,
         lambda v: f"measured on the machine that built the book, below {_q(limit, unit, 'g')}",
+        kind="timed_below",
+        limit=limit,
     )
 
 
@@ -127,6 +142,8 @@ def all_above(label: str, ref: Ref, limit: float, unit: str = "") -> Test:
             f"smallest {_q(float(_num(v).min()), unit)} of {np.size(v)} (each above "
             f"{_q(limit, unit, 'g')})"
         ),
+        kind="all_above",
+        limit=limit,
     )
 
 
@@ -137,6 +154,8 @@ def exceeds(label: str, ref: Ref, limit: float, what: str = "") -> Test:
         (ref,),
         lambda v: float(v) > limit,
         lambda v: f"{what + ' ' if what else ''}{float(v):.4g} (more than {limit:g})",
+        kind="exceeds",
+        limit=limit,
     )
 
 
@@ -147,6 +166,8 @@ def greater(label: str, a: Ref, b: Ref, names: tuple[str, str], fmt: str = ".3g"
         (a, b),
         lambda x, y: float(x) > float(y),
         lambda x, y: f"{names[0]} {float(x):{fmt}} against {names[1]} {float(y):{fmt}}",
+        kind="greater",
+        limit=None,
     )
 
 
@@ -161,10 +182,12 @@ def is_true(label: str, ref: Ref, describe: str) -> Test:
             if np.size(v) == 1
             else f"{describe}: {int(np.sum(v))} of {np.size(v)} true"
         ),
+        kind="is_true",
+        limit=True,
     )
 
 
 def with_construction(test: Test, why: str) -> Test:
     """The same test, marked as one that cannot fail (shown, never counted), for reason ``why``
     (e.g. ``"a linear model is linear"``)."""
-    return Test(test.label, test.refs, test.rule, test.describe, by_construction=True, why=why)
+    return replace(test, by_construction=True, why=why)

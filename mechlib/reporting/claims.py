@@ -91,6 +91,11 @@ class Test:
         is arithmetic on published values. It is shown, never counted in the verdict.
     why : str
         Why it cannot fail, in a few words (required when ``by_construction``).
+    kind : str
+        The rule's name (:mod:`mechlib.reporting.claimrules`: ``"at_most"``, ``"paired"``, …).
+    limit : object
+        Its threshold when it has a fixed one (a number, or a mapping of numbers); None when it
+        reads its threshold from the records (one of ``refs``) or compares two values.
 
     Raises
     ------
@@ -104,6 +109,8 @@ class Test:
     describe: Callable[..., str]
     by_construction: bool = False
     why: str = ""
+    kind: str = ""
+    limit: Any = None
 
     def __post_init__(self) -> None:
         if self.by_construction and not self.why.strip():
@@ -183,6 +190,8 @@ class Verdict:
         The setting, filled in from the records.
     described : tuple of str
         Per part, its evidence in words (without label), e.g. for a one-line summary.
+    read : tuple of list
+        Per part, the recorded values its rule read, in the order of its ``refs``.
     """
 
     spec: ClaimSpec
@@ -191,6 +200,7 @@ class Verdict:
     evidence: str
     setting: str
     described: tuple[str, ...] = ()
+    read: tuple[list[Any], ...] = ()
 
     def __post_init__(self) -> None:
         check_word(self.spec, self.holds, self.word)
@@ -309,4 +319,5 @@ def evaluate(spec: ClaimSpec, values: Mapping[str, Any]) -> Verdict:
     )
     word = verdict_word(spec.source, holds, spec.counted)
     described = tuple(t.describe(*v) for t, v in read_parts)
-    return Verdict(spec, word, holds, evidence, setting, described)
+    values_read = tuple(v for _, v in read_parts)
+    return Verdict(spec, word, holds, evidence, setting, described, values_read)

@@ -234,6 +234,7 @@ def _conditioning_at_every_budget() -> Test:
             refs,
             rule,
             describe,
+            kind="greater at every budget",
         ),
         CONDITIONING_BY_CONSTRUCTION,
     )
