@@ -188,3 +188,12 @@ def test_fit_gp_interpolates_its_runs_and_recovers_a_linear_response() -> None:
     np.testing.assert_array_equal(
         gaussian_process.predict_gp(again, fresh), gaussian_process.predict_gp(gp, fresh)
     )
+
+
+def test_the_interaction_ratio_reads_the_products_only() -> None:
+    x = np.random.default_rng(3).uniform(-1, 1, (40, 3))
+    y = np.c_[2 * x[:, 0] + 0.5 * x[:, 0] * x[:, 1] + 0.9 * x[:, 2] ** 2, x[:, 1]]
+    fit = quadratic.fit_quadratic(x, y)
+    np.testing.assert_allclose(quadratic.interaction_ratio(fit), [0.25, 0.0], atol=1e-10)
+    # the squares count among the second-order terms, not among the interactions
+    assert quadratic.second_order_ratio(fit)[0] == pytest.approx(0.45)

@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 
 from mechlib.pipeline.book import reportpage
 from mechlib.reporting import categories as cat
-from mechlib.reporting import claimlist, claims, verdicts
+from mechlib.reporting import claimlist, claims, thesisclaims, verdicts
 
 #: the outcome's heading
 HEADING = "## Outcome"
@@ -133,6 +133,8 @@ def outcome_markdown(
             if words[claimlist.claim_group(spec)] == claims.BY_CONSTRUCTION:
                 line = line.rstrip(".") + f" — {'; '.join(t.why for t in spec.parts)}."
             lines.append(f"  - {line}")
+    for where, statement, why in thesisclaims.UNTESTABLE:
+        lines.append(f"- **Not testable here:** *{statement}* ({where}): {why}.")
     found = inconsistency_lines(rows)
     if found:
         n = counts[cat.CAT_INCONSISTENT]
