@@ -107,7 +107,7 @@ def print_lean() -> None:
         f"{r['fit'].n_evaluations} FE models, {r['fit_s']:.0f} s; Eq 8 within {r['eq8_pct']:.3f} "
         f"%) vs the {r['source']} default model ({r['default_dofs']:,} DOFs; Eq 8 within "
         f"{r['default_eq8_pct']:.3f} %): worst pose difference {r['pose_pct_runs']:.3f} % "
-        f"of range on the runs, {r['pose_pct_sweep']:.3f} % on the {len(SWEEP)}-amplitude "
+        f"of full scale on the runs, {r['pose_pct_sweep']:.3f} % on the {len(SWEEP)}-amplitude "
         f"sweep (limit {POSE_PCT:g} %); departure from linearity within "
         f"{r['departure_pct_runs']:.2f} % / {r['departure_pct_sweep']:.2f} % of itself (limit "
         f"{DEPARTURE_PCT:g} %); factorisations per run {r['default_facts']:.2f} / "

@@ -29,6 +29,12 @@ def _failed_parts(verdict: claims.Verdict) -> str:
     )
 
 
+def _failed_labels(verdict: claims.Verdict) -> str:
+    """The labels of the parts that could fail and did, joined (``"a and b"``)."""
+    parts = zip(verdict.spec.parts, verdict.holds, strict=True)
+    return " and ".join(t.label for t, h in parts if not (h or t.by_construction))
+
+
 def _setting_head(verdict: claims.Verdict) -> str:
     """A setting's name, without its numbers (``"Table 8's printed budget"``)."""
     return verdict.setting.split(":", 1)[0]
@@ -49,8 +55,9 @@ def claim_line(members: Sequence[claims.Verdict]) -> str:
             f"{reportpage.verdict_markup(v.spec.id)} at {_setting_head(v)}" for v in members
         )
         failed = "; ".join(
-            f"at {_setting_head(v)}, {_failed_parts(v)}" for v in members if _failed_parts(v)
+            f"at {_setting_head(v)}: {_failed_labels(v)}" for v in members if _failed_labels(v)
         )
+        failed = f"not met {failed} (the evidence of each setting is in the report)"
         line = f"*{spec.statement}* ({spec.where}): {words} — {failed}"
     shown = sorted({t.label for t in spec.parts if t.by_construction})
     if shown and any(spec.counted) and not spec.setting:

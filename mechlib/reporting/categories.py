@@ -168,7 +168,8 @@ def difference_text(
         elif rel < ORDERS_FROM:
             text = f"{rel:.{d}g} × max |published|"
         else:
-            text = f"{np.floor(np.log10(rel)):.0f} orders of magnitude (× {rel:.2g})"
+            shown = float(f"{rel:.2g}")  # the orders of the factor as printed: 999.7 is × 1e+03
+            text = f"{np.floor(np.log10(shown)):.0f} orders of magnitude (× {rel:.2g})"
     if resolution_ratio is not None and resolution_ratio <= RESOLUTION_SHOWN:
         text += f"; {resolution_ratio:.{d}g} × half the last printed digit"
     return text
