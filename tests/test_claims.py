@@ -242,3 +242,12 @@ def test_the_page_check_finds_verdict_words_outside_a_quoted_claim() -> None:
     assert len(problems) == 1 and "'does not hold'" in problems[0] and "x.html:1" in problems[0]
     unknown = claimcheck.claim_problems({"x.html": _span("ch9.none", "mixed")}, {})
     assert "a verdict of no registered claim" in unknown[0]
+
+
+def test_the_active_algorithms_speed_is_judged_against_a_plain_implementation() -> None:
+    spec = claimlist.claim("ch3.active_speed")
+    fast = {"selection.active_same_as_plain": {"value": True}, "selection.active_over_plain": 0.01}
+    assert claims.evaluate(spec, fast).word == "supported"
+    slow = {**fast, "selection.active_over_plain": 0.9}
+    assert claims.evaluate(spec, slow).word == "mixed"
+    assert all(spec.counted)  # a measured time can fail: it counts

@@ -13,6 +13,7 @@ from __future__ import annotations
 from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR, FULL_SCALE
 from mechlib.parallelogram import comparison as para
 from mechlib.reporting import categories as cat
+from mechlib.reporting.calibrationclaims import CONDITIONING_BY_CONSTRUCTION, FLOPS_BY_CONSTRUCTION
 from mechlib.reporting.claimrules import (
     PAIRED_MIN_SHARE,
     all_above,
@@ -28,7 +29,6 @@ from mechlib.reporting.claimrules import (
 )
 from mechlib.reporting.claims import ClaimSpec
 from mechlib.reporting.mechanismclaims import parallelogram_fe_claims
-from mechlib.reporting.thesisclaims import CONDITIONING_BY_CONSTRUCTION, FLOPS_BY_CONSTRUCTION
 
 OURS = cat.SOURCE_OURS
 VX, FB, B5R = "virtual_experiments", "fivebar_identification", "beyond_5r"

@@ -5,11 +5,10 @@ where it states them (Table 5's ISO h6 tolerance and P. A. Petri's 3 %), else on
 (:data:`NEGLIGIBLE_RATIO`, :data:`LINEAR_BUDGET_PCT`, :data:`CONTROL_PERIOD_US`). Each of the
 first three has a part on a linear FE model, where it holds by construction (shown, not counted),
 and the part that could fail, on a geometrically non-linear model: its word is that part's, and
-its setting says so. Chapter 3's are the three advantages sec. 3.8 claims for divide and conquer
-(D&C) on the 5R: (i) is a flop count and (ii) a conditioning that the block-diagonal structure of
-the traditional matrix settles, each judged once (no budget changes them); (iii) is judged at
-every budget the thesis gives the traditional method (:data:`BUDGETS_5R`). Registered in
-:mod:`mechlib.reporting.claimlist`.
+its setting says so. Chapter 2 also claims its method general enough for distributed compliance
+(judged on the parallelogram flexure) and infers from its screening that interactions are
+negligible. Chapter 3's, on the 5R, are in :mod:`mechlib.reporting.calibrationclaims`. Registered
+in :mod:`mechlib.reporting.claimlist`.
 """
 
 from __future__ import annotations
@@ -19,16 +18,17 @@ from mechlib.doe import UNIFORM_SHARE_MAX
 from mechlib.metamodels.metrics import FULL_SCALE, SOLVER_PRECISION_PCT
 from mechlib.metamodels.realtime import DEADLINE_US
 from mechlib.reporting import categories as cat
+from mechlib.reporting.calibrationclaims import BUDGETS_5R, chapter3_claims
 from mechlib.reporting.claimrules import (
     at_most,
-    exceeds,
     is_true,
-    paired,
     timed_below,
     with_construction,
     within,
 )
-from mechlib.reporting.claims import ClaimSpec, Test
+from mechlib.reporting.claims import ClaimSpec
+
+__all__ = ["BUDGETS_5R", "CONTROL_PERIOD_US", "UNTESTABLE", "thesis_claims"]
 
 THESIS = cat.SOURCE_THESIS
 #: the pages whose records the claims read
@@ -279,115 +279,6 @@ def _chapter2() -> list[ClaimSpec]:
     ]
 
 
-#: chapter 3's budgets for the traditional method: record prefix, and how the verdict names it
-BUDGETS_5R = (
-    ("item10", "sec. 3.7 item 10's budget"),
-    ("table8", "Table 8's printed budget"),
-    ("equal", "equal measurements"),
-)
-
-
-#: why (i) cannot fail: arithmetic on the parameter counts of Tables 6 and 8
-FLOPS_BY_CONSTRUCTION = (
-    "a count of operations from the parameter counts (on the 5R 12³ against 2 · 6³): for any "
-    "split of n parameters into legs the legs' cubes sum to less than n³, so D&C's inversion is "
-    "cheaper on every mechanism, and no posture, budget or measurement enters it"
-)
-#: why (ii), as measured, cannot fail
-CONDITIONING_BY_CONSTRUCTION = (
-    "over shared postures the traditional matrix is block diagonal, diag(C₁, C₂), so its "
-    "conditioning is at best its worst leg's and the measure favours D&C by construction"
-)
-
-
-def _conditioning_at_every_budget() -> Test:
-    """(ii)'s evidence at the three budgets: D&C's worst leg against the traditional matrix."""
-    refs = tuple((f"mc_{budget}.cond", k) for budget, _ in BUDGETS_5R for k in (0, 1))
-    names = [name for _, name in BUDGETS_5R]
-
-    def rule(*c: float) -> bool:
-        return all(float(c[2 * i]) > float(c[2 * i + 1]) for i in range(len(names)))
-
-    def describe(*c: float) -> str:
-        return "; ".join(
-            f"{name}: D&C's worst leg {float(c[2 * i]):.3g} against the traditional total "
-            f"matrix {float(c[2 * i + 1]):.3g}"
-            for i, name in enumerate(names)
-        )
-
-    return with_construction(
-        Test(
-            "inverse condition number of the column-scaled identification matrix",
-            refs,
-            rule,
-            describe,
-            kind="greater at every budget",
-        ),
-        CONDITIONING_BY_CONSTRUCTION,
-    )
-
-
-def _chapter3() -> list[ClaimSpec]:
-    specs = [
-        ClaimSpec(
-            "ch3.i.5r",
-            THESIS,
-            "sec. 3.8 (i); Tables 6, 8",
-            "(i) divide and conquer has a lower computational cost",
-            FB,
-            (
-                with_construction(
-                    exceeds(
-                        "normal-matrix inversion flops, traditional / D&C",
-                        "table6.inversion_cost_ratio",
-                        1.0,
-                        "ratio",
-                    ),
-                    FLOPS_BY_CONSTRUCTION,
-                ),
-            ),
-        ),
-        ClaimSpec(
-            "ch3.ii.5r",
-            THESIS,
-            "sec. 3.8 (ii); Tables 6, 8",
-            "(ii) divide and conquer has a better numerical efficiency (conditioning of the "
-            "identification matrices)",
-            FB,
-            (_conditioning_at_every_budget(),),
-        ),
-    ]
-    for budget, name in BUDGETS_5R:
-        mc = f"mc_{budget}"
-        setting = f"{name}: {{n:.0f}} shared postures, {{trad:.0f}} against {{dc:.0f}} measurements"
-        refs = {
-            "n": f"{mc}.n_shared",
-            "trad": (f"{mc}.measurements", 1),
-            "dc": (f"{mc}.measurements", 0),
-        }
-        specs.append(
-            ClaimSpec(
-                f"ch3.iii.5r.{budget}",
-                THESIS,
-                "sec. 3.8 (iii); Figs 13–14",
-                "(iii) divide and conquer gives better identification results",
-                FB,
-                (
-                    paired(
-                        "parameter RMS error", f"{mc}.param_share_dc_better", f"{mc}.param_p_value"
-                    ),
-                    paired(
-                        "workspace RMS position error", f"{mc}.share_dc_better", f"{mc}.p_value"
-                    ),
-                ),
-                setting,
-                refs,
-                group="ch3.iii.5r",
-            )
-        )
-    return specs
-
-
 def thesis_claims() -> list[ClaimSpec]:
     """The thesis's claims, chapter 2's then chapter 3's."""
-    return [*_chapter2(), *_chapter3()]
+    return [*_chapter2(), *chapter3_claims()]
