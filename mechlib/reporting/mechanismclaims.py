@@ -64,13 +64,21 @@ def parallelogram_fe_claims() -> list[ClaimSpec]:
             "ours.parallelogram_fe.sweep_within",
             cat.SOURCE_OURS,
             where,
-            f"our non-linear FE on the page's mesh reproduces the published non-linear 3-D FE "
-            f"sweep within {SWEEP_AGREEMENT_PCT:g} % of full scale",
+            f"our non-linear FE reproduces the published non-linear 3-D FE sweep within "
+            f"{SWEEP_AGREEMENT_PCT:g} % of full scale, on the page's mesh and, where the two "
+            f"differ most, on our finest mesh",
             PF,
             (
                 at_most(
-                    "largest |our FE − published FE|, share of full scale",
+                    "largest |our FE − published FE| over the sweep, on the page's mesh, % of "
+                    "full scale",
                     "sweep.ours_vs_published_worst_pct",
+                    SWEEP_AGREEMENT_PCT,
+                    "%",
+                ),
+                at_most(
+                    "at the row where it is largest, on our finest mesh of the mesh study",
+                    "corner.fine_vs_published_pct",
                     SWEEP_AGREEMENT_PCT,
                     "%",
                 ),
