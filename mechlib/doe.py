@@ -94,6 +94,47 @@ def orthogonality(design: object) -> np.ndarray:
     return arr.T @ arr / arr.shape[0]
 
 
+def interaction_aliasing(design: object) -> float:
+    """The largest |correlation| between a two-factor interaction column ``x_i x_j`` and a
+    main-effect column ``x_k`` (k ≠ i, j) over the design's runs.
+
+    0 means the design estimates every main effect clear of every two-factor interaction (a
+    resolution IV design or better); a 12-run Plackett–Burman design gives 1/3: each of its
+    main effects carries a third of every interaction of two other factors, so it cannot show
+    that interactions are negligible.
+
+    Parameters
+    ----------
+    design : array_like, shape (runs, factors)
+        A two-level design, levels ±1 (at least three factors).
+
+    Raises
+    ------
+    ValueError
+        For fewer than three factors, or a constant column.
+    """
+    arr = check_design(design, two_level=True)
+    k = arr.shape[1]
+    if k < 3:
+        raise ValueError(f"interaction aliasing needs at least 3 factors, got {k}")
+    centred = arr - arr.mean(axis=0)
+    norms = np.linalg.norm(centred, axis=0)
+    if np.any(norms == 0):
+        raise ValueError("every column of the design must vary")
+    worst = 0.0
+    for i in range(k):
+        for j in range(i + 1, k):
+            product = arr[:, i] * arr[:, j]
+            product = product - product.mean()
+            size = np.linalg.norm(product)
+            if size == 0:  # a product that is constant is aliased with the mean only
+                continue
+            others = [m for m in range(k) if m not in (i, j)]
+            corr = np.abs(product @ centred[:, others]) / (size * norms[others])
+            worst = max(worst, float(corr.max()))
+    return worst
+
+
 def is_balanced(design: object) -> bool:
     """Whether every column takes each level of the design equally often (a U-type design).
 

@@ -197,3 +197,33 @@ def test_the_link_says_what_the_zip_holds() -> None:
     full = bundle.link_text("/d.zip", 2_100_000, ["runs/nonlinear_runs.csv", bundle.EVALUATOR])
     assert "(one zip, 2.1 MB)" in full and "every FE run the book reads" in full
     assert "plain-Python evaluator" in full and "learning curves" not in full
+
+
+def test_the_bundle_carries_every_verdict_machine_readable(tmp_path: Path) -> None:
+    """claims.json: the references' claims, each part with its record keys, values, limit and
+    whether it can fail; no word rests on a part that cannot fail; the README says how to read
+    it."""
+    from mechlib.reporting import claimlist
+    from mechlib.reporting import claims as claims_mod
+
+    references = Path(__file__).parent / "references"
+    out = bundle.write_bundle(references, tmp_path / bundle.NAME)
+    with zipfile.ZipFile(out) as archive:
+        data = json.loads(archive.read("claims.json"))
+        readme = archive.read("README.txt").decode()
+    assert "claims.json" in readme and "can_fail" in readme and "% of full scale" in readme
+    by_id = {c["id"]: c for c in data["claims"]}
+    assert set(by_id) <= set(claimlist.CLAIMS) and "ch2.linear" in by_id
+    linear = by_id["ch2.linear"]
+    assert linear["word"] == "not supported" and linear["where"] == "sec. 2.7; Table 5"
+    assert [p["can_fail"] for p in linear["parts"]] == [False, True]
+    part = linear["parts"][1]
+    assert part["record_keys"][0]["key"] == "table5.nonlinear.max_range_pct"
+    assert part["limit"] == 1.0 and part["holds"] is False and len(part["values"][0]) == 6
+    for claim in data["claims"]:  # the word is the one its parts that can fail give
+        holds = [p["holds"] for p in claim["parts"]]
+        counted = [p["can_fail"] for p in claim["parts"]]
+        assert claim["word"] == claims_mod.verdict_word(claim["source"], holds, counted)
+        if not any(counted):
+            assert claim["word"] == claims_mod.BY_CONSTRUCTION, claim["id"]
+    assert by_id["ch3.i.5r"]["word"] == by_id["ch3.ii.5r"]["word"] == claims_mod.BY_CONSTRUCTION

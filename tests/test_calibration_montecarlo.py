@@ -272,3 +272,15 @@ def test_summary_rows_in_micrometres_over_the_paired_trials() -> None:
     assert dc["workspace RMS median [µm]"] == pytest.approx(2.0)
     assert dc["param. RMS [σ_dist]"] == 2.5 and dc["solve time median [ms]"] == pytest.approx(2.0)
     assert rows["t"]["95 % CI low [µm]"] == pytest.approx(2.0)  # no spread, no interval
+
+
+def test_two_indices_are_compared_on_both_metrics_over_their_common_trials() -> None:
+    rng = np.random.default_rng(5)
+    base = rng.uniform(1.0, 2.0, 40)
+    a = {"param_rms_each": base * 1.1, "pos_rms_each": base * 0.9}  # worse params, better poses
+    b = {"param_rms_each": base.copy(), "pos_rms_each": base.copy()}
+    a["pos_rms_each"][3] = np.nan  # a fit that did not converge: left out of that pairing
+    share_p, p_p, share_x, p_x = mcarlo.index_pair(a, b)
+    assert share_p == 0.0 and share_x == 1.0 and p_p < 1e-6 and p_x < 1e-6
+    with pytest.raises(ValueError, match="trials"):
+        mcarlo.index_pair(a, {"param_rms_each": base[:5], "pos_rms_each": base[:5]})

@@ -182,3 +182,18 @@ def test_random_design_is_the_chapters_draw_and_its_prefix_is_the_smaller_design
         doe.random_design(0, 6, 2010)
     with pytest.raises(ValueError, match="seed must be >= 0, got -1"):
         doe.random_design(10, 6, -1)
+
+
+def test_a_plackett_burman_design_aliases_interactions_into_main_effects() -> None:
+    """PB-12 carries a third of every two-factor interaction in each other main effect; a full
+    factorial and a resolution IV fraction carry none."""
+    assert doe.interaction_aliasing(doe.plackett_burman(12)) == pytest.approx(1 / 3)
+    assert doe.interaction_aliasing(pub.TABLE2_DESIGN) == pytest.approx(1 / 3)
+    full = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], dtype=float)
+    assert doe.interaction_aliasing(full) == pytest.approx(0.0, abs=1e-15)
+    resolution_iv = np.c_[full, full.prod(axis=1)]  # D = ABC
+    assert doe.interaction_aliasing(resolution_iv) == pytest.approx(0.0, abs=1e-15)
+    resolution_iii = np.c_[full[:, :2], full[:, 0] * full[:, 1]]  # C = AB
+    assert doe.interaction_aliasing(resolution_iii) == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="at least 3 factors"):
+        doe.interaction_aliasing(full[:, :2])

@@ -231,3 +231,12 @@ def test_fit_gp_predictions_do_not_hinge_on_round_off() -> None:
     moved = x * (1 + 1e-12 * np.random.default_rng(1).standard_normal(x.shape))
     again = gaussian_process.predict_gp(gaussian_process.fit_gp(moved, y, seed=0), fresh)
     assert np.abs(again - base).max() < 1e-6 * np.abs(y).max()
+
+
+def test_the_interaction_ratio_reads_the_products_only() -> None:
+    x = np.random.default_rng(3).uniform(-1, 1, (40, 3))
+    y = np.c_[2 * x[:, 0] + 0.5 * x[:, 0] * x[:, 1] + 0.9 * x[:, 2] ** 2, x[:, 1]]
+    fit = quadratic.fit_quadratic(x, y)
+    np.testing.assert_allclose(quadratic.interaction_ratio(fit), [0.25, 0.0], atol=1e-10)
+    # the squares count among the second-order terms, not among the interactions
+    assert quadratic.second_order_ratio(fit)[0] == pytest.approx(0.45)

@@ -142,3 +142,25 @@ def test_notebook_outputs_and_markdown_are_checked_as_the_book_shows_them() -> N
     problems = pc.notebook_problems(nb, "nb")
     assert len(problems) == 2 and problems[0].startswith("nb cell 0:3: 'issue' in the text")
     assert problems[1] == "nb cell 1: a bare output, '0': label it"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "misses by 41.9 % of range at ±1 N",
+        "by up to 3 % of each pose component's range",
+        "the elastica departs by 20, 3 and 42 % of our ranges",
+        "both as shares of the linear validation runs' ranges",
+        "a table column: worst error [% of range]",
+    ],
+)
+def test_another_name_for_the_books_one_measure_is_refused(text: str) -> None:
+    problems = pc.markdown_problems(text, "p.md")
+    assert len(problems) == 1 and "another measure than '% of full scale'" in problems[0]
+
+
+def test_the_books_one_measure_and_other_ranges_pass() -> None:
+    text = "misses by 41.9 % of full scale over the force range of ±1 N, its range of movement"
+    assert pc.markdown_problems(text, "p.md") == []
+    html = "<p>Largest error [% of range]</p>"
+    assert pc.html_problems(html, "p.html")

@@ -129,3 +129,27 @@ def test_bad_indicator_input_is_refused_by_name() -> None:
     with pytest.raises(ValueError, match="sizes"):
         z = (np.zeros((4, 1)), np.ones((4, 1)), np.ones((4, 1)))
         corr.indicator_curve([8], z, z)
+
+
+def test_every_timing_judgement_uses_the_books_one_deadline() -> None:
+    """The claims registry's control period and the meta-model page's default deadline and
+    speed goal are the one deadline the methods page states."""
+    import ast
+    import json
+    from pathlib import Path
+
+    from mechlib.reporting import thesisclaims
+
+    assert thesisclaims.CONTROL_PERIOD_US == rt.DEADLINE_US == 100.0
+    nb = Path(__file__).resolve().parents[1] / "notebooks" / "nonlinear_metamodels.ipynb"
+    cell = next(
+        c
+        for c in json.loads(nb.read_text())["cells"]
+        if "parameters" in c["metadata"].get("tags", [])
+    )
+    defaults = {
+        node.targets[0].id: ast.literal_eval(node.value)
+        for node in ast.parse("".join(cell["source"])).body
+        if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Name)
+    }
+    assert defaults["deadline_us"] == defaults["goal_us"] == rt.DEADLINE_US

@@ -85,6 +85,8 @@ def test_difference_text_refuses_negative_input() -> None:
 def test_difference_text_says_round_off_and_orders_of_magnitude_not_huge_ratios() -> None:
     assert cat.difference_text(2e-18, 0.0279, 4.37) == "round-off (2e-18)"
     assert cat.difference_text(1.68e4 * 19, 19, 3.71e6) == "4 orders of magnitude (× 1.7e+04)"
+    # a factor printed as 1e+03 is 3 orders, even when it lies just below 1000
+    assert cat.difference_text(999.7, 1.0) == "3 orders of magnitude (× 1e+03)"
     assert cat.difference_text(16.8, 1.0) == "16.8 × max |published|"
     assert (
         cat.difference_text(0.3, 1.0, 2.0)

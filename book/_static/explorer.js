@@ -19,6 +19,9 @@
   var TIMING_MS = 50; // ... which runs at least this long ...
   var TIMING_MAX_POSES = 1 << 18; // ... or this many poses
   var FORCE_PLACES = 4; // forces found by the inverse are shown to 1e-4 N
+  // a force beyond the validated amplitude by less than half a shown digit is at it (Newton's
+  // round-off would otherwise warn of 1.0000 N beyond +-1 N)
+  var OUTSIDE_SLACK = 0.5 * Math.pow(10, -FORCE_PLACES);
   var TARGET_LIMIT = 2; // a typed target lies within this x the component's range (largest |value|
   // on the held-out runs): beyond it the polynomial is far outside what it was fitted on
   var cache = null;
@@ -219,7 +222,7 @@
       difference: reached.map(function (p, k) { return p - y[k]; }),
       error: err, iterations: iterations, stalled: stalled,
       converged: err <= ACCEPT_TOL, largest: largest,
-      outside: largest > mo.amp,
+      outside: largest > mo.amp + OUTSIDE_SLACK,
     };
   }
 
@@ -352,7 +355,7 @@
       note.className = "mx-error";
       note.textContent = "Newton's method found no forces that reach this pose (after " +
         res.iterations + " steps it still misses by " + (100 * res.error).toPrecision(2) +
-        " % of a component's range); the closest forces it found are shown.";
+        " % of full scale); the closest forces it found are shown.";
     } else if (res.outside) {
       note.className = "mx-warn";
       note.textContent = "This pose needs a force beyond \u00b1" + m.amplitude_n + " N (largest " +

@@ -25,7 +25,7 @@
   per pose against one full non-linear run, as a ratio measured in one run, and its pose error.
 - The lean FE model against the default one (:mod:`mechlib.bench.lean`): both identified to
   Eq 8, the same seeded non-linear runs in one process; the speed-up at equal accuracy and the
-  accuracy check (poses as % of range, the departure from linearity as % of itself).
+  accuracy check (poses as % of full scale, the departure from linearity as % of itself).
 - The DOE chapter (``virtual_experiments``) on the identified model, cold (no FE cache): the linear
   part (model, Tables 2 and 4, the 1000 validation runs) timed whole; the non-linear part timed
   per run in-process and on two-process pools (one BLAS thread per worker, and a plain one), and

@@ -5,7 +5,7 @@ magnitudes it achieves (:func:`mechlib.hexflex.studies.leanmesh.fit_lean`). Both
 seeded non-linear runs in one process, one after the other, with one BLAS thread: the first
 ``N_RUNS`` of the DOE chapter's validation draw (seed 2010, uniform in ±1 N) and its
 linear-range sweep along the first run. Accuracy as the non-linear family chapter states it
-(:func:`mechlib.hexflex.studies.leanmesh.compare`: poses as % of each component's range over the
+(:func:`mechlib.hexflex.studies.leanmesh.compare`: poses as % of full scale over the
 1000-run draw, departures from linearity as % of themselves); speed is the mean wall time of the
 ``N_RUNS`` runs.
 """
@@ -107,7 +107,7 @@ def print_lean() -> None:
         f"{r['fit'].n_evaluations} FE models, {r['fit_s']:.0f} s; Eq 8 within {r['eq8_pct']:.3f} "
         f"%) vs the {r['source']} default model ({r['default_dofs']:,} DOFs; Eq 8 within "
         f"{r['default_eq8_pct']:.3f} %): worst pose difference {r['pose_pct_runs']:.3f} % "
-        f"of range on the runs, {r['pose_pct_sweep']:.3f} % on the {len(SWEEP)}-amplitude "
+        f"of full scale on the runs, {r['pose_pct_sweep']:.3f} % on the {len(SWEEP)}-amplitude "
         f"sweep (limit {POSE_PCT:g} %); departure from linearity within "
         f"{r['departure_pct_runs']:.2f} % / {r['departure_pct_sweep']:.2f} % of itself (limit "
         f"{DEPARTURE_PCT:g} %); factorisations per run {r['default_facts']:.2f} / "

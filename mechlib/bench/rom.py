@@ -7,7 +7,7 @@ modal derivatives); the ROM is built; then the first ``N_CHECK`` validation runs
 (seed 2010, uniform in ±1 N) are solved by the full non-linear solver and by the ROM, in the
 same process: the ratio of the full run's wall time to the ROM's, per pose (one pose per call,
 and a batch of ``N_BATCH``), and the ROM's pose error (largest |difference| over the runs as %
-of each pose component's range over them, and as % of each run's largest component).
+of full scale over them, and as % of each run's largest component).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 
 from mechlib import published as pub
 
-#: POD vectors of the 42 snapshots: 12 left x and y errors of 1.3–1.4 % of their range on the
+#: POD vectors of the 42 snapshots: 12 left x and y errors of 1.3–1.4 % of their full scale on the
 #: identified model, 24 brought every component below 0.5 % (16 validation runs, ±1 N).
 N_POD = 24
 #: Validation runs solved by both (each full run costs seconds).

@@ -239,7 +239,8 @@ def index_comparison(
     """D&C with each leg's poses chosen by each observability index of
     :data:`mechlib.calibration.selection.INDICES` (greedy, same budget), and by chance: the
     workspace RMS position error [m] and the parameter RMS of a seeded Monte Carlo per index
-    (over the trials whose fits converged)."""
+    (over the trials whose fits converged), and both per trial (``pos_rms_each``,
+    ``param_rms_each``; NaN where a fit did not converge) for :func:`index_pair`."""
     n = st.check_count(study, "n_per_leg", n_per_leg)
     rng = np.random.default_rng(check_int("seed", seed, low=0))
     out = {}
@@ -250,8 +251,36 @@ def index_comparison(
     for name, sets in choices.items():
         mc = monte_carlo(study, sets, {}, sigma, n_trials, seed)
         used = cs.used_trials(mc, ("dc",))
+        param = np.asarray(mc["dc"]["param"], dtype=float)
         out[name] = {
             "pos_rms": float(mc["dc"]["pos_rms"][used].mean()),
             "param_rms": cs.parameter_rms(mc["dc"]["param"][used]),
+            # per trial (NaN where a fit did not converge), paired across indices by the seed
+            "pos_rms_each": np.where(used, mc["dc"]["pos_rms"], np.nan),
+            "param_rms_each": np.where(used, np.sqrt(np.mean(param**2, axis=1)), np.nan),
         }
     return out
+
+
+def index_pair(a: dict[str, object], b: dict[str, object]) -> list[float]:
+    """Index ``a``'s poses against index ``b``'s over the trials both converged in (the same
+    seeded disturbances: :func:`index_comparison`): ``[share of trials a's parameter RMS error is
+    the smaller, Wilcoxon p, the same for the workspace RMS position error]``, as
+    :func:`mechlib.calibration.statistics.paired_verdict` gives them.
+
+    Raises
+    ------
+    ValueError
+        When the two hold different numbers of trials, or no trial in common.
+    """
+    pairs = []
+    for key in ("param_rms_each", "pos_rms_each"):
+        x, y = np.asarray(a[key], dtype=float), np.asarray(b[key], dtype=float)
+        if x.shape != y.shape:
+            raise ValueError(f"{key}: the indices hold {x.shape} and {y.shape} trials")
+        both = np.isfinite(x) & np.isfinite(y)
+        if not both.any():
+            raise ValueError(f"{key}: no trial converged for both indices")
+        verdict = cs.paired_verdict(x[both], y[both])
+        pairs += [verdict["share_a_better"], verdict["p_value"]]
+    return pairs

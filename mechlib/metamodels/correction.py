@@ -109,7 +109,7 @@ def corrected_curve(
     seed: int = 0,
 ) -> np.ndarray:
     """:func:`corrected`'s learning curve from the low-fidelity poses computed once: the largest
-    error (% of range, worst component) on held-out runs of the correction fitted on the first
+    error (% of full scale, worst component) on held-out runs of the correction fitted on the first
     ``n`` training runs, per ``n`` of ``sizes``.
 
     The fits are those of ``corrected`` on the same runs, except that the low-fidelity poses come
@@ -131,7 +131,7 @@ def corrected_curve(
     Returns
     -------
     ndarray (len(sizes),)
-        Worst-component largest error [% of range] per size.
+        Worst-component largest error [% of full scale] per size.
     """
     low_t, x_t, y_t = _runs("train", train, "forces")
     low_v, x_v, y_v = _runs("held_out", held_out, "forces")
@@ -226,7 +226,7 @@ def indicator_curve(
     held_out: tuple[object, object, object],
     seed: int = 0,
 ) -> np.ndarray:
-    """Largest error (% of range, worst component) on held-out runs of the low-fidelity model
+    """Largest error (% of full scale, worst component) on held-out runs of the low-fidelity model
     corrected by :func:`indicator_correction` fitted on the first ``n`` training runs, per
     ``n`` of ``sizes``.
 
@@ -242,7 +242,7 @@ def indicator_curve(
     Returns
     -------
     ndarray (len(sizes),)
-        Worst-component largest error [% of range] per size. Every fit divides the indicators
+        Worst-component largest error [% of full scale] per size. Every fit divides the indicators
         by their largest |value| over all training runs (the same inputs at every size).
     """
     low_t, feat_t, y_t = _runs("train", train, "features")

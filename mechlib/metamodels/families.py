@@ -22,7 +22,7 @@ inversion as family ``PHYSICS`` through :func:`wrap_model`.
 Libraries: scikit-learn's GP and LARS (already locked), chosen by measurement against SMT 2.15,
 OpenTURNS 1.27 and chaospy 4.3 (a one-off script, not kept in the repository): Eq 8's S_T with
 2 % on every entry plus ~3 % quadratic, ~1 % cubic and a 1 % sine term; LHS random-cd training
-of 30 / 100 / 300 runs, 1000 uniform validation runs; worst max |error| as % of range; times on
+of 30 / 100 / 300 runs, 1000 uniform validation runs; worst max |error| as % of full scale; times on
 a shared, loaded 2-core machine, one BLAS thread (compare them only as ratios); µs per pose
 batched for the GPs, for one pose for the PCEs (total degree 3):
 

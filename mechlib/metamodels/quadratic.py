@@ -114,3 +114,16 @@ def second_order_ratio(fit: dict[str, object]) -> np.ndarray:
     quadratic and interaction terms are negligible."""
     parts = quadratic_parts(fit)
     return np.abs(parts["second"]).max(axis=0) / np.abs(parts["S"]).max(axis=1)
+
+
+def interaction_ratio(fit: dict[str, object]) -> np.ndarray:
+    """Largest |two-factor interaction coefficient| (the ``t_i*t_j`` terms, squares left out)
+    over largest |linear one| of a :func:`fit_quadratic` result ``fit``, per output: an array
+    (outputs,)."""
+    names = list(fit["names"])
+    coef = check_matrix("coef", fit["coef"], shape=(len(names), None))
+    parts = quadratic_parts(fit)
+    products = np.array(["*" in n for n in names])
+    if not products.any():
+        raise ValueError(f"fit has no interaction term among {names}")
+    return np.abs(coef[products]).max(axis=0) / np.abs(parts["S"]).max(axis=1)

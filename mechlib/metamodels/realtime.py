@@ -36,6 +36,11 @@ DISTILL_SAMPLES = 2**14
 """Teacher evaluations a distillation fits to (a power of two: a balanced Sobol' sample)."""
 DISTILL_CHECK = 2**12
 """Teacher evaluations, on an independent Sobol' sample, its student is checked against."""
+DEADLINE_US = 100.0
+"""The book's one real-time deadline [µs a pose]: the period of a 10 kHz control loop. The thesis
+names no rate; piezo-driven nano-positioners such as the HexFlex are commonly controlled at
+10–50 kHz, so a model slower than this cannot serve in such a loop. Every timing judgement of
+the book uses it."""
 MAX_DEGREE = 8
 """Largest total degree :func:`distill` accepts (six forces: 3003 terms)."""
 
@@ -51,15 +56,15 @@ def choose_teacher(cv_pct: dict[str, float], goal_pct: float) -> tuple[str, floa
     Parameters
     ----------
     cv_pct : dict
-        Candidate name → cross-validated worst error [% of range], at least one, finite ≥ 0.
+        Candidate name → cross-validated worst error [% of full scale], at least one, finite ≥ 0.
     goal_pct : float
-        Accuracy goal [% of range], in (0, 100].
+        Accuracy goal [% of full scale], in (0, 100].
 
     Returns
     -------
     name : str
     tol_pct : float
-        The distillation tolerance [% of range] for :func:`distill_to`:
+        The distillation tolerance [% of full scale] for :func:`distill_to`:
         ``max(goal_pct - cv, cv / 10)``, ``cv`` the teacher's error.
     """
     goal_pct = check_float("goal_pct", goal_pct, low=0.0, high=100.0, low_open=True)

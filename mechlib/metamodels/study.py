@@ -101,7 +101,7 @@ def budget_ranges(
     cases : mapping
         Range [N] → (forces (runs, 6), true poses (runs, 6)), the held-out runs at that range.
     budget_pct : float
-        Largest allowed error, % of each component's range, > 0.
+        Largest allowed error, % of full scale, > 0.
 
     Returns
     -------

@@ -24,6 +24,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from mechlib.metamodels.metrics import full_scale_pct
 from mechlib.parallelogram import elastica as el
 from mechlib.parallelogram import published as pub
 
@@ -187,8 +188,9 @@ def relative_excess(model: object, fe: object, rows: object) -> np.ndarray:
 
 
 def shares_pct(model: object, fe: object, span_of: object = None) -> np.ndarray:
-    """|model − FE| per row and component in % of the FE component's range over ``span_of``
-    (default ``fe``), shape (n, 3).
+    """|model − FE| per row and component in % of full scale: of the FE component's largest
+    |value| over ``span_of`` (default ``fe``), shape (n, 3)
+    (:func:`mechlib.metamodels.metrics.full_scale_pct`, the book's one measure).
 
     Raises
     ------
@@ -198,21 +200,17 @@ def shares_pct(model: object, fe: object, span_of: object = None) -> np.ndarray:
     m, f = as_rows("model", model), as_rows("fe", fe)
     if m.shape != f.shape:
         raise ValueError(f"model and fe must share one shape, got {m.shape} and {f.shape}")
-    return (
-        100.0
-        * np.abs(m - f)
-        / np.ptp(as_rows("span_of", f if span_of is None else span_of), axis=0)
-    )
+    return full_scale_pct(m - f, as_rows("span_of", f if span_of is None else span_of))
 
 
 class Summary(NamedTuple):
     """Differences elastica − FE per component (arrays of 3: u_x/L, u_y/L, φ).
 
     ``worst_abs``, ``median_abs``: largest and median |difference| (u/L, rad);
-    ``worst_share_pct``, ``median_share_pct``: the same in % of the FE component's range over
-    the rows given as ``span_of``; ``worst_rel_pct``, ``median_rel_pct``: largest and median
-    |model/FE − 1| [%] over the compared rows (:func:`compared_rows`); ``worst_row``: the row
-    index of the largest |difference|.
+    ``worst_share_pct``, ``median_share_pct``: the same in % of full scale (of the FE
+    component's largest |value| over the rows given as ``span_of``); ``worst_rel_pct``,
+    ``median_rel_pct``: largest and median |model/FE − 1| [%] over the compared rows
+    (:func:`compared_rows`); ``worst_row``: the row index of the largest |difference|.
     """
 
     worst_abs: np.ndarray
@@ -251,7 +249,7 @@ def summarise(
     sel = np.ones(len(f), bool) if where is None else np.asarray(where, dtype=bool)
     if sel.shape != (len(f),) or not sel.any() or m.shape != f.shape or a.shape != f.shape:
         raise ValueError("model, fe, loads must be (n, 3) alike and where select some of n rows")
-    spans = np.ptp(as_rows("span_of", f if span_of is None else span_of), axis=0)
+    spans = np.abs(as_rows("span_of", f if span_of is None else span_of)).max(axis=0)
     diff = np.abs(m - f)
     rel = np.abs(relative_excess(m, f, compared_rows(a) & sel[:, None]))
     worst_row = np.flatnonzero(sel)[np.argmax(diff[sel], axis=0)]

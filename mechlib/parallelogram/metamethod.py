@@ -34,7 +34,7 @@ from mechlib.parallelogram.method import (
 from mechlib.params import check_choice, check_float, check_int
 
 BUDGET_PCT = 1.0
-"""Default error budget: largest error as % of each pose component's range."""
+"""Default error budget: largest error as % of full scale."""
 
 
 def check_families(families: Sequence[str]) -> list[str]:
@@ -139,7 +139,7 @@ def score_family(
 ) -> dict[str, np.ndarray | float]:
     """Errors of a fitted model on held-out runs within its validated range:
     :func:`mechlib.metamodels.scoring.score` (``max_range_pct`` (3,), ``rmse`` (3,), ``maxabs``,
-    ``max_rel_pct``, and ``worst_pct`` the worst component's % of range)."""
+    ``max_rel_pct``, and ``worst_pct`` the worst component's % of full scale)."""
     u = to_unit(loads, scale=surrogate.amplitude)
     return scoring.score(surrogate, u, check_poses(poses, len(u)))
 
@@ -224,7 +224,7 @@ def budget_scales(
     held_out : mapping
         The same scales → held-out (loads, poses) within s × the box.
     budget_pct : float
-        Largest error allowed, % of each pose component's range, in (0, 100].
+        Largest error allowed, % of full scale, in (0, 100].
     seed : int
         Seed of the families' own randomness.
 
@@ -272,7 +272,7 @@ def cv_errors(
     scale: float = 1.0,
     seed: int = 0,
 ) -> dict[str, float]:
-    """Seeded cross-validated worst error [% of range] of each family on its training runs
+    """Seeded cross-validated worst error [% of full scale] of each family on its training runs
     within ``scale`` × the box (:func:`mechlib.metamodels.scoring.cross_validate`, ``CV_FOLDS``
     folds, or leave-one-out when a fold would leave fewer runs than the family needs, as
     :func:`mechlib.metamodels.scoring.cv_folds` decides for 3 loads). Chooses a model without
@@ -281,7 +281,7 @@ def cv_errors(
     Returns
     -------
     dict
-        Family → worst component's cross-validated error [% of range].
+        Family → worst component's cross-validated error [% of full scale].
 
     Raises
     ------
@@ -308,13 +308,13 @@ class RealTime(NamedTuple):
     teacher_model: Surrogate
     """That family fitted on every training run."""
     tol_pct: float
-    """How far the student may stray from its teacher [% of range] (goal minus its CV error)."""
+    """How far the student may stray from its teacher [% of full scale] (goal minus CV error)."""
     student: Surrogate
     """The Legendre polynomial of the lowest degree within ``tol_pct`` (family ``distilled``)."""
     degree: int
     """Its total degree."""
     distill_errors: dict[int, float]
-    """Degree → distillation error [% of range] of every degree tried."""
+    """Degree → distillation error [% of full scale] of every degree tried."""
 
 
 def realtime_model(
@@ -341,7 +341,7 @@ def realtime_model(
     cv_pct : mapping
         Family → cross-validated worst error [%] (:func:`cv_errors`), at least one.
     goal_pct : float
-        Accuracy goal of teacher and student together [% of range], in (0, 100].
+        Accuracy goal of teacher and student together [% of full scale], in (0, 100].
     scale : float
         Validated range, a fraction of the box in (0, 1].
     degrees : tuple of int

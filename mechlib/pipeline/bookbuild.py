@@ -50,9 +50,10 @@ half a unit of the last printed digit, round-off, or a stated one), *consistent 
 evidence), *diverges* (with the cause found in the chapter), *inconsistency inside the thesis*
 (published values contradict each other), *consistent inside the thesis* (published values set
 against each other agree), *not reproduced*, a claim of the thesis (with the verdict the claims
-registry gives it, quoted by id), *our finding beyond the thesis* (never counted with the
-thesis's claims; its verdict quoted likewise), *computed*
-(nothing published to compare with) and *redrawn* (a diagram of the thesis's method). The
+registry gives it, quoted by id, from its parts that could fail; a part that cannot fail is shown
+and not counted, and a claim with no other part is *consistent by construction*), *our finding
+beyond the thesis* (never counted with the thesis's claims; its verdict quoted likewise),
+*computed* (nothing published to compare with) and *redrawn* (a diagram of the thesis's method). The
 difference is the largest one relative to the largest published value and, where the thesis
 printed a finite number of digits, in units of half its last digit. Each artefact links to
 the section of the chapter page that shows it.
@@ -191,7 +192,7 @@ def report_markdown(
         "",
         verdicts.counts_table(verdicts.category_counts(every), reportpage.category_markup),
         "",
-        landing.counts_sentence(verdicts.category_counts(every), verdicts.thesis_claim_ids(every)),
+        landing.counts_sentence(verdicts.thesis_claim_ids(every)),
         "",
         "The verdict per thesis artefact, rolled up from these rows, is on the "
         "[first page](intro.md).",

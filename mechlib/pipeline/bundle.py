@@ -14,7 +14,10 @@ the HTML output. Contents:
 * ``data/<notebook>/``: the tables and models the notebooks kept for it
   (:meth:`~mechlib.reporting.records.Recorder.add_data`), with the plain-Python evaluator of the
   real-time model beside it;
-* ``README.txt``: what each file is, and what is not included.
+* ``claims.json``: every claim the book judges, machine-readable
+  (:func:`mechlib.reporting.claimlist.claims_file`), so that another reproduction can be compared
+  with this one claim by claim;
+* ``README.txt``: what each file is, how to read the claims file, and what is not included.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import textwrap
 import zipfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
@@ -30,6 +34,8 @@ import numpy as np
 
 from mechlib import published as pub
 from mechlib.metamodels import evaluator
+from mechlib.metamodels.metrics import FULL_SCALE_DEFINITION
+from mechlib.reporting import claimlist
 from mechlib.reporting.records import DATA_DIR, DATA_INDEX
 
 #: The bundle's file name (the landing page links it).
@@ -57,6 +63,22 @@ records/  every record of this build: key numbers with their tolerances, glued v
           reproduction report's rows (JSON)
 runs/     table2_ours.csv, table4_ours.csv: our FE model's responses to the designs of Tables 2
           and 4 (um, urad), with the forces
+claims.json
+          every claim the book judges, one entry per claim and setting. Each entry: id; group
+          (the claim a setting belongs to: count groups, not entries); source ("thesis" or
+          "ours"); where (the thesis's section and artefact, or the book's section); statement;
+          page (the notebook that records its evidence); setting; word; parts. Each part:
+          label; rule (at_most, paired, ...); record_keys (notebook, key in that notebook's
+          records/<notebook>.json under "values", else under "timings", and an index into the
+          value, "0:3" a slice); values (as read); limit (its threshold; null when the
+          threshold is itself a recorded value or two values are compared); can_fail; why (for
+          a part that cannot fail: the reason); holds; evidence (in words). "word_rule" says
+          how a word follows from the parts: only parts with can_fail true count. "measure"
+          defines "% of full scale"; "deadline_us" is the one real-time deadline. To compare
+          two reproductions, match entries by id, then compare word, then each part's values
+          against the other's limit.
+
+Errors in "% of full scale": {measure}
 
 Licence: what this reproduction computed is under the MIT licence of its repository (LICENSE,
 (c) 2026 The mechlib reproduction contributors); the values under thesis/ are the thesis's,
@@ -64,6 +86,11 @@ transcribed and cited, and keep its rights.
 """
 #: where the real-time model's plain-Python evaluator goes, beside the model
 EVALUATOR = "data/nonlinear_metamodels/evaluator.py"
+
+
+def _wrapped(text: str, width: int = 92) -> str:
+    """``text`` in lines of at most ``width`` characters (the README's plain text)."""
+    return textwrap.fill(text, width)
 
 
 def _number(value: float) -> str:
@@ -136,6 +163,12 @@ def link_text(bundle: str, size_bytes: int, members: Sequence[str] = ()) -> str:
     ``size_bytes``: the zip's size; ``members``: its file names, which say what it holds)."""
     size = f"{size_bytes / 1e6:.2g} MB" if size_bytes >= 1e6 else f"{size_bytes / 1e3:.3g} kB"
     held = ["every record of key numbers with its tolerance and report rows (JSON)"]
+    if "claims.json" in members:
+        held.append(
+            "every verdict of the book, machine-readable (claims.json: each claim's thesis "
+            "location, statement, setting, word, and its parts with their record keys, values, "
+            "thresholds and whether each can fail)"
+        )
     if "runs/nonlinear_runs.csv" in members:
         held.append(
             "every FE run the book reads (the linear and non-linear runs with their forces, "
@@ -150,7 +183,7 @@ def link_text(bundle: str, size_bytes: int, members: Sequence[str] = ()) -> str:
     return (
         f"{{download}}`Download the data of this build <{bundle}>` (one zip, {size}): the "
         f"thesis's tables as transcribed (CSV), {', '.join(held[:-1])} and {held[-1]}; its "
-        "README says what each file is, with units."
+        "README says what each file is, with units, and how to read the claims file."
     )
 
 
@@ -214,12 +247,14 @@ def write_bundle(
         raise FileNotFoundError(f"bundle: no <notebook>.json in {records}")
     loaded = {p.stem: json.loads(p.read_text()) for p in paths}
     data, data_lines = notebook_data(records)
-    readme = README + extra_readme
+    readme = README.format(measure=_wrapped(FULL_SCALE_DEFINITION)) + extra_readme
     if data_lines:
         readme += "data/     what the notebooks kept for this bundle:\n"
         readme += "".join(f"          {line}\n" for line in data_lines)
+    claims = claimlist.claims_file(claimlist.judge(loaded))
     members = {
         "README.txt": readme,
+        "claims.json": json.dumps(claims, indent=1, ensure_ascii=False) + "\n",
         **thesis_tables(),
         **{f"records/{p.name}": p.read_text() for p in paths},
         **run_tables(loaded),

@@ -1,9 +1,11 @@
 """The book's landing page, generated from the records: readable in thirty seconds.
 
-:func:`write_landing` writes a MyST page with what the thesis is (prose from
+:func:`write_landing` writes a MyST page that opens with the outcome
+(:mod:`mechlib.pipeline.outcome`, from the claims registry and the report rows), then the main
+findings in a sentence each with a link to their evidence, then what the thesis is (prose from
 :data:`THESIS_TEXT`, which states no result), one table with a verdict per thesis artefact
-(:func:`mechlib.reporting.verdicts.rollup`), the counts per verdict category, the main findings in
-a sentence each with a link to their evidence, and the profile the book was built with.
+(:func:`mechlib.reporting.verdicts.rollup`), the counts per verdict category, and the profile
+the book was built with.
 
 Every result the page states is read from the records: a finding (:class:`Finding`) quotes
 recorded values, and is shown only when the report row it rests on has one of the categories
@@ -13,13 +15,14 @@ that make its sentence true (else its ``otherwise`` sentence, else nothing).
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from mechlib.pipeline import bundle as bundle_mod
+from mechlib.pipeline import outcome
 from mechlib.pipeline.book import reportpage
 from mechlib.pipeline.findings import FINDINGS, Finding, Quote
 from mechlib.pipeline.provenance import DEFAULT_PROFILE
@@ -32,12 +35,18 @@ _PROFILE = re.compile(r"^[A-Za-z0-9_-]+$")
 #: the record keys that hold a chapter's parameters
 PARAMETER_PREFIX = "parameters."
 
-THESIS_TEXT = """\
+TITLE_TEXT = """\
 # An executable reproduction of a 2010 thesis on mechanism modelling
 
 This book re-derives, from code that runs whenever the book is built, the tables, figures and
 equations of a 2010 master's thesis from EAFIT University (Medellín) on predicting small
-quasi-static deformations of mechanisms. The thesis has two studies.
+quasi-static deformations of mechanisms: a compliant six-axis positioner (chapter 2) and the
+kinematic identification of a planar five-bar (chapter 3). What follows first is the outcome,
+then the main findings; the thesis, and a verdict per artefact of it, come after.
+"""
+
+THESIS_TEXT = """\
+## The thesis, and how it is reproduced
 
 **Chapter 2 — design of computer experiments on a compliant mechanism.** The HexFlex, a flat
 aluminium six-degree-of-freedom nano-positioner, is modelled with finite elements and pushed at
@@ -68,7 +77,10 @@ LEGEND = (
     "*Consistent by construction*: we fitted to the published value or computed ours from it, "
     "so agreement is expected, not evidence. *Inconsistency inside the thesis*: published "
     "values contradict each other; *consistent inside the thesis*: published values set against "
-    "each other agree (no computation of ours is tested). *Computed*: a figure or number of the "
+    "each other agree (no computation of ours is tested). A claim of the thesis reads the word of "
+    "its tests that could fail; a part that cannot fail (true by construction on our model, "
+    "or is arithmetic on published values) is shown, never counted, and a claim with no other "
+    "part is *consistent by construction*, counted apart. *Computed*: a figure or number of the "
     "thesis that we compute with nothing published to compare it with. *Redrawn*: a diagram of "
     "the thesis's method, drawn from its text."
 )
@@ -141,7 +153,16 @@ def finding_lines(
 ) -> list[str]:
     """The finding as a Markdown list item, or no line when its row or values are missing or its
     row's category makes neither sentence true. A finding that rests on registered claims
-    quotes their verdicts (``[[claim id]]`` in its text) and is always stated."""
+    quotes their verdicts (``[[claim id]]`` in its text) and is always stated.
+
+    Raises
+    ------
+    ValueError
+        For a finding that quotes a claim the registry does not hold.
+    """
+    unknown = [c for c in _CLAIM.findall(finding.text) if c not in claimlist.CLAIMS]
+    if unknown:
+        raise ValueError(f"finding {finding.title!r} quotes unregistered claims {unknown}")
     try:
         row = find_row(rows, finding.row) if finding.row else None
         numbers = {name: quote(records, where) for name, where in finding.values.items()}
@@ -164,17 +185,36 @@ def _escape(text: str) -> str:
 
 
 def artefact_table(rows: Sequence[verdicts.ReportRow], link: Link) -> str:
-    """One line per thesis artefact: its title, its verdict and the roll-up of its rows."""
-    lines = ["| Artefact | In the thesis | Verdict | Rows |", "|---|---|---|---|"]
+    """One line per thesis artefact: its title, its verdict, the roll-up of its rows and the
+    claims filed under it (each quoted with its own word, by id)."""
+    lines = [
+        "| Artefact | In the thesis | Verdict | Rows | Claims judged here |",
+        "|---|---|---|---|---|",
+    ]
     for entry in verdicts.rollup(rows):
         name = entry["artefact"]
         cell = link(entry["pages"][0], name, name) if entry["pages"] else name
-        detail = entry["summary"].split(": ", 1)[1] if entry["rows"] else "—"
+        under = ", ".join(entry["counted_under"])
+        if entry["verdict"] == verdicts.NO_ROW and under:
+            verdict, detail = f"counted under {under}", "—"
+        else:
+            verdict = reportpage.category_markup(entry["verdict"])
+            detail = entry["summary"].split(": ", 1)[1] if entry["counts"] else "—"
+            detail += f" (also counted under {under})" if under else ""
+        claimed = "; ".join(claim_cell(ids) for ids in entry["claims"].values())
         lines.append(
-            f"| {cell} | {_escape(entry['title'])} | "
-            f"{reportpage.category_markup(entry['verdict'])} | {_mark_categories(detail)} |"
+            f"| {cell} | {_escape(entry['title'])} | {verdict} | {_mark_categories(detail)} | "
+            f"{claimed or '—'} |"
         )
     return "\n".join(lines)
+
+
+def claim_cell(ids: Sequence[str]) -> str:
+    """A claim judged in the settings ``ids``: its statement, then its word in each, quoted by
+    id (one claim: one word, wherever it is shown)."""
+    statement = claimlist.claim(ids[0]).statement
+    words = " / ".join(reportpage.verdict_markup(i) for i in ids)
+    return f"{_escape(statement)}: {words}"
 
 
 def _mark_categories(text: str) -> str:
@@ -187,24 +227,29 @@ def _mark_categories(text: str) -> str:
     return out
 
 
-def counts_sentence(counts: Mapping[str, int], claim_ids: Sequence[str] = ()) -> str:
-    """One sentence of the counts: how many rows compare published values, test the thesis's
-    claims, or go beyond the thesis — and, of the judged claims ``claim_ids``, how many distinct
-    claims of the thesis their rows judge (one claim may have a row per setting)."""
-    groups = {name: sum(counts[c] for c in members) for name, members in verdicts.COUNT_GROUPS}
-    sizes = ", ".join(f"{n} {name}" for name, n in groups.items())
+def counts_sentence(claim_ids: Sequence[str] = ()) -> str:
+    """One sentence of the counts: what they count (claims once, other rows each) and, of the
+    judged claims ``claim_ids`` (the report's thesis-claim rows), how many distinct claims of
+    the thesis their rows judge (one claim may have a row per setting)."""
     rows, distinct, several = claimlist.thesis_claims_judged(claim_ids)
     per_claim = (
-        f"; the {rows} rows that judge a claim of the thesis judge {distinct} distinct claims, "
-        f"{several} of them once per setting (the report names each row's setting), so count "
-        f"claims, not rows, when weighing the thesis"
-        if rows > distinct
+        f" The report's {rows} rows on the thesis's claims judge {distinct} distinct claims"
+        + (
+            f", {several} of them once per setting (the report names each row's setting); the "
+            f"table counts such a claim once, under the word its settings share or as mixed "
+            f"when they differ"
+            if rows > distinct
+            else ""
+        )
+        + "."
+        if rows
         else ""
     )
     return (
-        f"The report has {sum(counts.values())} rows ({sizes}){per_claim}; findings of ours are "
-        f"never counted among the thesis's claims, and agreement that follows by construction is "
-        f"not counted as reproduction."
+        "The table counts each claim once and every other report row once."
+        f"{per_claim} Findings of ours are never counted among the thesis's claims; agreement "
+        "that follows by construction is not counted as reproduction, and a part of a claim "
+        "that cannot fail is shown with its evidence, never counted as support."
     )
 
 
@@ -264,6 +309,13 @@ def landing_markdown(
     data_text = bundle_mod.link_text(bundle, bundle_bytes, bundle_members) if bundle else ""
     return "\n".join(
         [
+            TITLE_TEXT,
+            outcome.outcome_markdown(claimlist.judge(records), rows),
+            "",
+            "## Main findings",
+            "",
+            *(findings or ["No finding could be stated from this build's records."]),
+            "",
             THESIS_TEXT,
             "## Verdict per thesis artefact",
             "",
@@ -273,13 +325,9 @@ def landing_markdown(
             "",
             "## Counts per verdict",
             "",
-            counts_sentence(counts, verdicts.thesis_claim_ids(rows)),
+            counts_sentence(verdicts.thesis_claim_ids(rows)),
             "",
             verdicts.counts_table(counts, reportpage.category_markup),
-            "",
-            "## Main findings",
-            "",
-            *(findings or ["No finding could be stated from this build's records."]),
             "",
             "## This build",
             "",

@@ -12,6 +12,10 @@ clean. ``make test`` runs them over ``book/`` and ``book/_build/html``.
   (``[110.85…, 265.29…]``, a lone ``0``, ``'yes'``): a value shown to the reader needs a label
   (a table, a sentence).
 * No ``site-packages`` path, even a relative one, anywhere.
+* An error relative to a pose component is in "% of full scale", the one measure the methods
+  page defines (:data:`mechlib.metamodels.metrics.FULL_SCALE`): "% of range", "% of each
+  component's range", "share of the range" are refused in prose (:data:`OTHER_MEASURE`), since
+  a range reads as max − min.
 * The landing page's counts per verdict equal the report page's and the records'.
 """
 
@@ -23,6 +27,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from html.parser import HTMLParser
 from typing import Any
 
+from mechlib.metamodels.metrics import FULL_SCALE
 from mechlib.pipeline.book.browser import VOID_ELEMENTS
 from mechlib.reporting import verdicts
 
@@ -34,6 +39,13 @@ JARGON: tuple[tuple[str, re.Pattern[str]], ...] = (
     ("earlier version", re.compile(r"\bearlier\s+version", re.IGNORECASE)),
     ("repository's history", re.compile(r"\brepository['’]s\s+history", re.IGNORECASE)),
 )
+#: the other names of an error relative to a pose component, refused for "% of full scale"
+OTHER_MEASURE = re.compile(
+    r"(?:%|\bper\s*cent|\bshares?)\s+of\s+(?:the\s+|each\s+|a\s+|its\s+|our\s+|their\s+|"
+    r"that\s+|this\s+)?(?:[\w'’.-]+\s+){0,4}?ranges?\b",
+    re.IGNORECASE,
+)
+JARGON += ((f"another measure than {FULL_SCALE!r}", OTHER_MEASURE),)
 #: The admonition title under which commands and build words are allowed.
 RERUN_TITLE = re.compile(r"re-?run\s+(this\s+page|a\s+chapter)", re.IGNORECASE)
 SITE_PACKAGES = re.compile(r"site-packages")

@@ -222,7 +222,8 @@ def running_errors(
     title: str,
     axes: Sequence[Axes] | None = None,
 ) -> Figure:
-    """Pointwise and range-relative maximum error against the number of validation runs.
+    """Pointwise maximum error, and maximum error in % of full scale, against the number of
+    validation runs.
 
     Parameters
     ----------
@@ -234,7 +235,7 @@ def running_errors(
     title : str
         The figure's title.
     axes : sequence of 2 Axes, optional
-        The pointwise and the range-relative panel.
+        The pointwise and the full-scale panel.
 
     Returns
     -------
@@ -245,7 +246,7 @@ def running_errors(
     for ax, key, name in zip(
         panels,
         ("max_rel_pct", "max_range_pct"),
-        ("pointwise: max 100 |ψ − ψ̂| / |ψ|", "range-relative: 100 MAXABS / max |ψ|"),
+        ("pointwise: max 100 |ψ − ψ̂| / |ψ|", "% of full scale: 100 MAXABS / max |ψ|"),
         strict=True,
     ):
         for j, label in enumerate(labels):

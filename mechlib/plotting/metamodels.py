@@ -49,7 +49,7 @@ def learning_curves(
     budget_word: str = "budget",
     extra_runs: Sequence[int] | None = None,
 ) -> Figure:
-    """Largest validation error (% of a component's range, worst component) against the number
+    """Largest validation error (% of full scale, worst component) against the number
     of full FE training runs: one line per family (``worst_pct`` (families, sizes); NaN where a
     family cannot be fitted), each shifted by its ``extra_runs`` (the full runs a model needs
     before the curve's ones, e.g. a reduced-order model's own), and single points (``points``:
@@ -71,7 +71,7 @@ def learning_curves(
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("full non-linear FE runs used for training")
-    ax.set_ylabel("largest error [% of range]")
+    ax.set_ylabel("largest error [% of full scale]")
     ax.legend(fontsize=7, ncol=2)
     return fig
 
@@ -83,7 +83,7 @@ def error_vs_range(
     budget_pct: float,
     ax=None,
 ) -> Figure:
-    """Largest validation error (% of range) of each model (rows of ``worst_pct``) at each
+    """Largest validation error (% of full scale) of each model (rows of ``worst_pct``) at each
     force range ±amplitude [N] (columns)."""
     fig, ax = figure_and_axes(ax, (6.4, 4.0))
     w = np.asarray(worst_pct, dtype=float)
@@ -94,7 +94,7 @@ def error_vs_range(
     ax.set_yscale("log")
     ax.set_xticks(list(amplitudes), [f"±{a:g}" for a in amplitudes])
     ax.set_xlabel("force range [N]")
-    ax.set_ylabel("largest error [% of range]")
+    ax.set_ylabel("largest error [% of full scale]")
     ax.legend(fontsize=7, ncol=2)
     return fig
 
@@ -107,7 +107,7 @@ def latency_accuracy(
     deadline_us: float,
     ax=None,
 ) -> Figure:
-    """Largest validation error (% of range) against the time to predict one pose [µs], with
+    """Largest validation error (% of full scale) against the time to predict one pose [µs], with
     the error budget and a control-loop deadline."""
     fig, ax = figure_and_axes(ax, (6.4, 4.0))
     for t, e, name in zip(latency_us, worst_pct, names, strict=True):
@@ -117,6 +117,6 @@ def latency_accuracy(
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time to predict one pose [µs]")
-    ax.set_ylabel("largest error [% of range]")
+    ax.set_ylabel("largest error [% of full scale]")
     ax.legend(fontsize=7, ncol=2)
     return fig

@@ -30,6 +30,9 @@ CAT_SUPPORTED = "thesis claim supported"
 CAT_NOT_SUPPORTED = "thesis claim not supported"
 #: a claim made of several parts, some of which hold
 CAT_MIXED = "thesis claim mixed"
+#: a claim of the thesis whose every part holds by construction or is arithmetic on published
+#: values: shown, never counted as support (its own line in the counts)
+CAT_CLAIM_CONSTRUCTION = "thesis claim consistent by construction"
 #: a hypothesis or result of ours: never counted with the thesis's claims or values
 CAT_OURS = "our finding beyond the thesis"
 CAT_COMPUTED = "computed (no published value)"
@@ -46,11 +49,15 @@ CATEGORIES = (
     CAT_SUPPORTED,
     CAT_NOT_SUPPORTED,
     CAT_MIXED,
+    CAT_CLAIM_CONSTRUCTION,
     CAT_OURS,
     CAT_COMPUTED,
     CAT_REDRAWN,
 )
-CLAIM_CATEGORIES = (CAT_SUPPORTED, CAT_NOT_SUPPORTED, CAT_MIXED)
+#: the categories of a thesis claim that a test which could fail has judged
+TESTED_CLAIM_CATEGORIES = (CAT_SUPPORTED, CAT_NOT_SUPPORTED, CAT_MIXED)
+#: every category of a thesis claim's row (tested, or consistent by construction only)
+CLAIM_CATEGORIES = (*TESTED_CLAIM_CATEGORIES, CAT_CLAIM_CONSTRUCTION)
 
 #: what a comparison's agreement rests on: an independent computation (default), a fit to the
 #: published value or an input taken from it, or two published values set against each other
@@ -161,7 +168,8 @@ def difference_text(
         elif rel < ORDERS_FROM:
             text = f"{rel:.{d}g} × max |published|"
         else:
-            text = f"{np.floor(np.log10(rel)):.0f} orders of magnitude (× {rel:.2g})"
+            shown = float(f"{rel:.2g}")  # the orders of the factor as printed: 999.7 is × 1e+03
+            text = f"{np.floor(np.log10(shown)):.0f} orders of magnitude (× {rel:.2g})"
     if resolution_ratio is not None and resolution_ratio <= RESOLUTION_SHOWN:
         text += f"; {resolution_ratio:.{d}g} × half the last printed digit"
     return text

@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import Any
 
+from mechlib.metamodels.metrics import FULL_SCALE, FULL_SCALE_DEFINITION
+from mechlib.metamodels.realtime import DEADLINE_US
 from mechlib.reporting import categories as cat
 from mechlib.reporting import claims
 from mechlib.reporting.claims import ClaimSpec
@@ -20,6 +22,7 @@ __all__ = [
     "CLAIMS",
     "CONTROL_PERIOD_US",
     "claim",
+    "claims_file",
     "for_page",
     "judge",
     "thesis_claims_judged",
@@ -50,10 +53,26 @@ def for_page(page: str) -> list[ClaimSpec]:
 
 
 def claim_group(spec: ClaimSpec) -> str:
-    """The claim ``spec`` judges whatever its setting: a claim judged per setting (chapter 3's
-    at each measurement budget) names its setting in the last part of its id
-    (``ch3.iii.5r.table8`` → ``ch3.iii.5r``); any other claim is its own."""
-    return spec.id.rsplit(".", 1)[0] if spec.setting else spec.id
+    """The claim ``spec`` judges whatever its setting: the group it declares (chapter 3's (iii)
+    at each measurement budget: ``ch3.iii.5r.table8`` → ``ch3.iii.5r``); any other claim, with a
+    setting or not, is its own."""
+    return spec.group or spec.id
+
+
+def group_word(words: Iterable[str]) -> str:
+    """The word of a claim judged in several settings, from its word in each: the word they
+    share, else :data:`~mechlib.reporting.claims.MIXED` (the evidence splits across settings).
+
+    Raises
+    ------
+    ValueError
+        For no word, or a word no claim reads.
+    """
+    found = list(words)
+    unknown = [w for w in found if w not in claims.WORDS]
+    if not found or unknown:
+        raise ValueError(f"words must be some of {claims.WORDS}, got {found}")
+    return found[0] if len(set(found)) == 1 else claims.MIXED
 
 
 def thesis_claims_judged(claim_ids: Iterable[str]) -> tuple[int, int, int]:
@@ -125,4 +144,94 @@ def verdict_table(judged: Mapping[str, claims.Verdict]) -> dict[str, dict[str, s
             "page": v.spec.page,
         }
         for cid, v in judged.items()
+    }
+
+
+#: the claims file's format (raise it when a field changes meaning)
+CLAIMS_FILE_FORMAT = 1
+#: how the claims file says its words are given
+WORD_RULE = (
+    "A claim's word comes from its parts that could fail ('can_fail': true) only: a thesis "
+    "claim is 'supported' when each holds, 'not supported' when none does, 'mixed' when they "
+    "split; a finding of ours 'holds', 'does not hold' or is 'mixed' likewise. A part that "
+    "cannot fail (true by construction on our model, or arithmetic on published values) is "
+    "listed with its reason ('why') and never counted; a claim with no other part reads "
+    "'consistent by construction'. A claim judged in several settings has one entry per "
+    "setting, sharing its 'group'."
+)
+
+
+def _index(index: object) -> object:
+    """A record reference's index, JSON-ready (a slice as ``"0:3"``)."""
+    if isinstance(index, slice):
+        start, stop = ("" if i is None else i for i in (index.start, index.stop))
+        return f"{start}:{stop}"
+    if isinstance(index, tuple):
+        return [_index(i) for i in index]
+    return index
+
+
+def _plain(value: object) -> object:
+    """A recorded value, JSON-ready (NumPy scalars and arrays as Python numbers and lists)."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def claims_file(judged: Mapping[str, claims.Verdict]) -> dict[str, Any]:
+    """Every judged claim, machine-readable, for the data bundle's ``claims.json``: so that
+    another reproduction, or a later build of this one, can be compared claim by claim.
+
+    Returns
+    -------
+    dict
+        ``format``, ``word_rule``, ``measure`` (the name and definition of the relative error
+        measure), ``deadline_us`` and ``claims``: per claim its ``id``, ``group``, ``source``,
+        ``where`` (the thesis location, or the section of the book), ``statement``, ``page``
+        (notebook), ``setting``, ``word`` and ``parts``, each with its ``label``, ``rule``,
+        ``record_keys`` (``notebook``, ``key``, ``index``), the ``values`` read, its ``limit``,
+        ``can_fail``, ``why`` (when it cannot fail), ``holds`` and ``evidence`` in words.
+    """
+    out = []
+    for cid, v in judged.items():
+        spec = v.spec
+        parts = []
+        for k, test in enumerate(spec.parts):
+            refs = [(r, None) if isinstance(r, str) else r for r in test.refs]
+            parts.append(
+                {
+                    "label": test.label,
+                    "rule": test.kind,
+                    "record_keys": [
+                        {"notebook": spec.page, "key": key, "index": _index(i)} for key, i in refs
+                    ],
+                    "values": _plain(list(v.read[k])) if v.read else None,
+                    "limit": test.limit,
+                    "can_fail": not test.by_construction,
+                    "why": test.why,
+                    "holds": v.holds[k],
+                    "evidence": v.described[k] if v.described else "",
+                }
+            )
+        out.append(
+            {
+                "id": cid,
+                "group": claim_group(spec),
+                "source": spec.source,
+                "where": spec.where,
+                "statement": spec.statement,
+                "page": spec.page,
+                "setting": v.setting,
+                "word": v.word,
+                "parts": parts,
+            }
+        )
+    return {
+        "format": CLAIMS_FILE_FORMAT,
+        "word_rule": WORD_RULE,
+        "measure": {"name": FULL_SCALE, "definition": FULL_SCALE_DEFINITION},
+        "deadline_us": DEADLINE_US,
+        "claims": out,
     }

@@ -3,16 +3,19 @@
 A claim is a statement the book gives a verdict on — a claim of the thesis (with its section,
 equation, table or figure) or a finding of ours. Each :class:`ClaimSpec` names the page (notebook)
 that records its evidence, the record keys the verdict is computed from and the rule
-(:class:`Test`: one per part of the claim). The verdict follows from the parts:
+(:class:`Test`: one per part of the claim). The verdict follows from the parts that could fail:
 
-- a thesis claim is **supported** when every part holds, **not supported** when none does, and
-  **mixed** when the evidence splits;
-- a finding of ours **holds**, **does not hold**, or is **mixed** likewise.
+- a thesis claim is **supported** when every such part holds, **not supported** when none does,
+  and **mixed** when the evidence splits;
+- a finding of ours **holds**, **does not hold**, or is **mixed** likewise;
+- a claim with no part that could fail reads **consistent by construction**.
 
-A part that holds by construction on our model is the claim tested in the thesis's own setting —
-a linear FE analysis, which our linear model reproduces — and it counts in the verdict: a claim
-that holds there and fails on a geometrically non-linear model is **mixed**, its report row marks
-the part "(by construction)", and the pages say which part is which.
+A part that cannot fail — it holds by construction on our model (a linear FE model is linear), or
+it is arithmetic on published values (a flop count from the parameter counts) — is shown with the
+claim's evidence, marked and with the reason it cannot fail, and never counted: a claim that holds
+on a linear FE model and fails on a geometrically non-linear one is **not supported**, in the
+setting it was tested in. :class:`Verdict` refuses a word that counts such a part, and a part
+that "cannot fail" but fails is an error of the registry, raised as one.
 
 A notebook records the evidence, then calls :meth:`mechlib.reporting.records.Recorder.claim`,
 which evaluates the rule here, records the verdict word under ``claims.<id>`` and adds the claim's
@@ -31,19 +34,20 @@ from typing import Any
 
 import numpy as np
 
-from mechlib.calibration.statistics import CLAIM_MAX_P, CLAIM_MIN_SHARE
 from mechlib.reporting import categories as cat
 
 SUPPORTED, NOT_SUPPORTED, MIXED = "supported", "not supported", "mixed"
 HOLDS, DOES_NOT_HOLD = "holds", "does not hold"
-#: every verdict word, longest first (a page check finds them in this order)
+#: the word of a claim none of whose parts could fail (also the name of a comparison category,
+#: so the page check does not look for it in prose)
+BY_CONSTRUCTION = cat.CAT_CONSTRUCTION
+#: every verdict word a test that could fail gives, longest first (a page check finds them in
+#: this order)
 VERDICT_WORDS = (NOT_SUPPORTED, DOES_NOT_HOLD, SUPPORTED, HOLDS, MIXED)
+#: every word a claim may read
+WORDS = (*VERDICT_WORDS, BY_CONSTRUCTION)
 #: what a claim's report row shows as its published value
 CLAIM_PUBLISHED = "(claim)"
-#: D&C "wins" a paired comparison when it is better in more than this share of the trials and
-#: the Wilcoxon signed-rank test rejects "no difference" at this level (two-sided): the
-#: calibration core's rule (:func:`mechlib.calibration.statistics.claim_holds`), one definition
-PAIRED_MIN_SHARE, PAIRED_MAX_P = CLAIM_MIN_SHARE, CLAIM_MAX_P
 
 #: A record reference: a key, or a key and an index into its value (or "min"/"max" of it).
 Ref = str | tuple[str, object]
@@ -83,8 +87,20 @@ class Test:
     describe : callable
         ``describe(*values) -> str``: the evidence in words (numbers included).
     by_construction : bool
-        The part holds by construction on our model (e.g. a linear model is linear): it is shown,
-        and counted in the verdict, but it is no independent evidence.
+        The part cannot fail: it holds by construction on our model (a linear model is linear) or
+        is arithmetic on published values. It is shown, never counted in the verdict.
+    why : str
+        Why it cannot fail, in a few words (required when ``by_construction``).
+    kind : str
+        The rule's name (:mod:`mechlib.reporting.claimrules`: ``"at_most"``, ``"paired"``, …).
+    limit : object
+        Its threshold when it has a fixed one (a number, or a mapping of numbers); None when it
+        reads its threshold from the records (one of ``refs``) or compares two values.
+
+    Raises
+    ------
+    ValueError
+        For a part marked by construction without its reason.
     """
 
     label: str
@@ -92,6 +108,13 @@ class Test:
     rule: Callable[..., bool]
     describe: Callable[..., str]
     by_construction: bool = False
+    why: str = ""
+    kind: str = ""
+    limit: Any = None
+
+    def __post_init__(self) -> None:
+        if self.by_construction and not self.why.strip():
+            raise ValueError(f"part {self.label!r} holds by construction: say why it cannot fail")
 
     def values(self, values: Mapping[str, Any]) -> list[Any]:
         """The values this part reads (see :func:`read`)."""
@@ -119,9 +142,13 @@ class ClaimSpec:
         The rule, one test per part.
     setting : str
         The setting the verdict holds for, a ``str.format`` template over ``setting_refs`` (the
-        budget of a calibration comparison); empty when there is one setting only.
+        budget of a calibration comparison, the model a claim was tested on); empty when there
+        is one setting only.
     setting_refs : mapping of str to Ref
         The recorded values the setting names.
+    group : str
+        The claim this one judges in one of several settings (chapter 3's (iii) at each budget:
+        ``"ch3.iii.5r"``), so that counts count it once; empty for a claim judged once.
     """
 
     id: str
@@ -132,22 +159,51 @@ class ClaimSpec:
     parts: tuple[Test, ...]
     setting: str = ""
     setting_refs: Mapping[str, Ref] | None = None
+    group: str = ""
 
     def __post_init__(self) -> None:
         cat.check_kinds(cat.BASIS_INDEPENDENT, self.source)
         if not self.parts:
             raise ValueError(f"claim {self.id!r} has no part to test")
 
+    @property
+    def counted(self) -> tuple[bool, ...]:
+        """Per part, whether it could fail and so counts in the verdict."""
+        return tuple(not t.by_construction for t in self.parts)
+
 
 @dataclass(frozen=True)
 class Verdict:
-    """A claim's verdict as computed from the records."""
+    """A claim's verdict as computed from the records.
+
+    Attributes
+    ----------
+    spec : ClaimSpec
+        The claim.
+    word : str
+        Its word (refused unless its parts that could fail give it: :func:`check_word`).
+    holds : tuple of bool
+        Per part, whether it holds.
+    evidence : str
+        Every part in words, marked when it cannot fail.
+    setting : str
+        The setting, filled in from the records.
+    described : tuple of str
+        Per part, its evidence in words (without label), e.g. for a one-line summary.
+    read : tuple of list
+        Per part, the recorded values its rule read, in the order of its ``refs``.
+    """
 
     spec: ClaimSpec
     word: str
     holds: tuple[bool, ...]
     evidence: str
     setting: str
+    described: tuple[str, ...] = ()
+    read: tuple[list[Any], ...] = ()
+
+    def __post_init__(self) -> None:
+        check_word(self.spec, self.holds, self.word)
 
     @property
     def category(self) -> str:
@@ -158,6 +214,7 @@ class Verdict:
             SUPPORTED: cat.CAT_SUPPORTED,
             NOT_SUPPORTED: cat.CAT_NOT_SUPPORTED,
             MIXED: cat.CAT_MIXED,
+            BY_CONSTRUCTION: cat.CAT_CLAIM_CONSTRUCTION,
         }[self.word]
 
     def row(self) -> dict[str, Any]:
@@ -175,24 +232,68 @@ class Verdict:
             "category": self.category,
             "source": self.spec.source,
             "basis": cat.BASIS_INDEPENDENT,
-            "n_values": len(self.holds),
-            "n_agree": int(sum(self.holds)),
+            "n_values": sum(self.spec.counted),
+            "n_agree": sum(h for h, c in zip(self.holds, self.spec.counted, strict=True) if c),
             "difference_text": "—",
             "claim": self.spec.id,
         }
 
 
-def verdict_word(source: str, holds: Sequence[bool]) -> str:
-    """The verdict word of a claim whose parts hold or not (see the module's rules)."""
-    n, n_hold = len(holds), int(sum(holds))
-    if not n:
+def verdict_word(source: str, holds: Sequence[bool], counted: Sequence[bool] | None = None) -> str:
+    """The verdict word of a claim whose parts hold or not (see the module's rules).
+
+    Parameters
+    ----------
+    source : {"thesis", "ours"}
+        Whose claim it is.
+    holds : sequence of bool
+        Per part, whether it holds.
+    counted : sequence of bool, optional
+        Per part, whether it could fail (default: every part could); only those decide the word.
+
+    Raises
+    ------
+    ValueError
+        For no part, for ``counted`` not one per part, or when a part that cannot fail fails
+        (the registry's reason for it is wrong).
+    """
+    counted = [True] * len(holds) if counted is None else list(counted)
+    if not holds:
         raise ValueError("a verdict needs at least one part")
+    if len(counted) != len(holds):
+        raise ValueError(f"counted must name each of the {len(holds)} parts, got {len(counted)}")
+    broken = [i for i, (h, c) in enumerate(zip(holds, counted, strict=True)) if not (h or c)]
+    if broken:
+        raise ValueError(f"parts {broken} hold by construction, yet they fail: check their reason")
+    informative = [h for h, c in zip(holds, counted, strict=True) if c]
+    if not informative:
+        return BY_CONSTRUCTION
+    n, n_hold = len(informative), int(sum(informative))
     thesis = source == cat.SOURCE_THESIS
     if n_hold == n:
         return SUPPORTED if thesis else HOLDS
     if n_hold == 0:
         return NOT_SUPPORTED if thesis else DOES_NOT_HOLD
     return MIXED
+
+
+def check_word(spec: ClaimSpec, holds: Sequence[bool], word: str) -> None:
+    """Refuse a word that the claim's parts that could fail do not give — in particular one
+    that counts a part holding by construction.
+
+    Raises
+    ------
+    ValueError
+        Naming the claim, the word given and the word its informative parts give.
+    """
+    if len(holds) != len(spec.parts):
+        raise ValueError(f"claim {spec.id!r} has {len(spec.parts)} parts, got {len(holds)} results")
+    expected = verdict_word(spec.source, holds, spec.counted)
+    if word != expected:
+        raise ValueError(
+            f"claim {spec.id!r}: the word {word!r} is refused; the parts that could fail give "
+            f"{expected!r} (a part that holds by construction is shown, never counted)"
+        )
 
 
 def evaluate(spec: ClaimSpec, values: Mapping[str, Any]) -> Verdict:
@@ -212,159 +313,11 @@ def evaluate(spec: ClaimSpec, values: Mapping[str, Any]) -> Verdict:
         raise KeyError(f"claim {spec.id!r} (page {spec.page}): {err.args[0]}") from None
     holds = tuple(bool(t.rule(*v)) for t, v in read_parts)
     evidence = "; ".join(
-        f"{t.label}{' (by construction)' if t.by_construction else ''}: {t.describe(*v)} "
-        f"({'met' if h else 'not met'})"
+        f"{t.label}{f' (by construction, not counted: {t.why})' if t.by_construction else ''}: "
+        f"{t.describe(*v)} ({'met' if h else 'not met'})"
         for (t, v), h in zip(read_parts, holds, strict=True)
     )
-    return Verdict(spec, verdict_word(spec.source, holds), holds, evidence, setting)
-
-
-# --- rules ----------------------------------------------------------------------------------
-
-
-def _num(x: Any) -> np.ndarray:
-    return np.asarray(x, dtype=float)
-
-
-def _q(value: float, unit: str, fmt: str = ".3g") -> str:
-    """A number with its unit (none when ``unit`` is empty)."""
-    return f"{value:{fmt}} {unit}".rstrip()
-
-
-def paired(label: str, share: Ref, p_value: Ref, what: str = "D&C") -> Test:
-    """``what`` is better in more than :data:`PAIRED_MIN_SHARE` of the paired trials and the
-    Wilcoxon signed-rank test rejects "no difference" at :data:`PAIRED_MAX_P`."""
-    return Test(
-        label,
-        (share, p_value),
-        lambda s, p: s > PAIRED_MIN_SHARE and p < PAIRED_MAX_P,
-        lambda s, p: f"{what} better in {100 * s:.0f} % of the paired trials, Wilcoxon p = {p:.2g}",
-    )
-
-
-def at_most(
-    label: str, ref: Ref, limit: float, unit: str, what: str = "largest", strict: bool = False
-) -> Test:
-    """The largest of the recorded values is at most ``limit`` (in ``unit``; below it when
-    ``strict``)."""
-    if strict:
-        return Test(
-            label,
-            (ref,),
-            lambda v: float(_num(v).max()) < limit,
-            lambda v: f"{what} {_q(float(_num(v).max()), unit)} (below {_q(limit, unit, 'g')})",
-        )
-    return Test(
-        label,
-        (ref,),
-        lambda v: float(_num(v).max()) <= limit,
-        lambda v: f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(limit, unit, '.4g')})",
-    )
-
-
-def within(label: str, ref: Ref, limit: Ref, unit: str, what: str = "largest") -> Test:
-    """The largest of the recorded values is at most the recorded ``limit`` (a parameter of the
-    page, e.g. its accuracy budget)."""
-    return Test(
-        label,
-        (ref, limit),
-        lambda v, lim: float(_num(v).max()) <= float(lim),
-        lambda v, lim: (
-            f"{what} {_q(float(_num(v).max()), unit)} (at most {_q(float(lim), unit, '.4g')})"
-        ),
-    )
-
-
-def each_within(label: str, ref: Ref, limits: Ref, unit: str) -> Test:
-    """Each recorded value is at most the recorded limit of the same index (e.g. a difference
-    per quantity against a tolerance per quantity)."""
-    return Test(
-        label,
-        (ref, limits),
-        lambda v, lim: bool(np.all(_num(v) <= _num(lim))),
-        lambda v, lim: "; ".join(
-            f"{_q(a, unit)} (at most {_q(b, unit, '.4g')})"
-            for a, b in zip(_num(v).ravel(), _num(lim).ravel(), strict=True)
-        ),
-    )
-
-
-def at_least(
-    label: str, ref: Ref, limit: float, unit: str, what: str = "smallest", reduce: str = "min"
-) -> Test:
-    """The smallest (``reduce="min"``) or largest (``"max"``) of the recorded values is at
-    least ``limit`` (in ``unit``)."""
-    if reduce not in ("min", "max"):
-        raise ValueError(f"reduce must be 'min' or 'max', got {reduce!r}")
-    return Test(
-        label,
-        (ref,),
-        lambda v: float(getattr(_num(v), reduce)()) >= limit,
-        lambda v: (
-            f"{what} {float(getattr(_num(v), reduce)()):.3g} {unit} (at least {limit:.4g} {unit})"
-        ),
-    )
-
-
-def timed_below(label: str, ref: Ref, limit: float, unit: str) -> Test:
-    """A measured time (a record's timing) is below ``limit``. Its value is not written into the
-    evidence (a timing differs between runs; the page quotes it as measured), and the limit must
-    leave a margin of orders of magnitude, so that no machine of ours flips the verdict."""
-    return Test(
-        label,
-        (ref,),
-        lambda v: float(v) < limit,
-        lambda v: f"measured on the machine that built the book, below {_q(limit, unit, 'g')}",
-    )
-
-
-def all_above(label: str, ref: Ref, limit: float, unit: str = "") -> Test:
-    """Every recorded value is above ``limit`` (e.g. a share of trials in every cell)."""
-    return Test(
-        label,
-        (ref,),
-        lambda v: bool(np.all(_num(v) > limit)),
-        lambda v: (
-            f"smallest {_q(float(_num(v).min()), unit)} of {np.size(v)} (each above "
-            f"{_q(limit, unit, 'g')})"
-        ),
-    )
-
-
-def exceeds(label: str, ref: Ref, limit: float, what: str = "") -> Test:
-    """The recorded number is greater than ``limit``."""
-    return Test(
-        label,
-        (ref,),
-        lambda v: float(v) > limit,
-        lambda v: f"{what + ' ' if what else ''}{float(v):.4g} (more than {limit:g})",
-    )
-
-
-def greater(label: str, a: Ref, b: Ref, names: tuple[str, str], fmt: str = ".3g") -> Test:
-    """The value ``a`` is greater than ``b`` (named ``names``)."""
-    return Test(
-        label,
-        (a, b),
-        lambda x, y: float(x) > float(y),
-        lambda x, y: f"{names[0]} {float(x):{fmt}} against {names[1]} {float(y):{fmt}}",
-    )
-
-
-def is_true(label: str, ref: Ref, describe: str) -> Test:
-    """Every element of a recorded boolean (a computed test named by ``describe``) is true."""
-    return Test(
-        label,
-        (ref,),
-        lambda v: bool(np.all(np.asarray(v, dtype=bool))),
-        lambda v: (
-            f"{describe}: {'yes' if np.all(v) else 'no'}"
-            if np.size(v) == 1
-            else f"{describe}: {int(np.sum(v))} of {np.size(v)} true"
-        ),
-    )
-
-
-def with_construction(test: Test) -> Test:
-    """The same test, marked as holding by construction on our model."""
-    return Test(test.label, test.refs, test.rule, test.describe, by_construction=True)
+    word = verdict_word(spec.source, holds, spec.counted)
+    described = tuple(t.describe(*v) for t, v in read_parts)
+    values_read = tuple(v for _, v in read_parts)
+    return Verdict(spec, word, holds, evidence, setting, described, values_read)

@@ -1,25 +1,26 @@
-"""Our claims about the parallelogram flexure in our own FE (the page "The parallelogram in our
-own FE"): the mesh study and the published sweep. Thresholds are fixed from the benchmark's own
+"""Our claims about the parallelogram flexure in our own FE (the page "The parallelogram in our own
+FE"): the mesh study and the published sweep. Thresholds are fixed from the benchmark's own
 numbers before ours are measured: 1 % for a converged mesh; the published meshes' own spread at
-the mesh study's load, per component (their 10 mm mesh against their 3 mm one); 2 % of a
-component's range for the sweep (a round figure above the largest relative change their mesh
-study shows, 1.72 %: a share of the range and a change relative to a value are different
-measures, so this bound is a judgement, stated here before measuring); for chapter 2's method, the
-1 % error budget of our meta-model chapter. Registered in
-:mod:`mechlib.reporting.claimlist` through :func:`mechlib.reporting.ourclaims.our_claims`.
+the mesh study's load, per component (their 10 mm mesh against their 3 mm one); 2 % of full
+scale for the sweep (a round figure above the largest relative change their mesh study shows,
+1.72 %: a share of full scale and a change relative to a value are different measures, so this
+bound is a judgement, stated here before measuring); for chapter 2's method, the 1 % error
+budget of our meta-model chapter. Registered in :mod:`mechlib.reporting.claimlist` through
+:func:`mechlib.reporting.ourclaims.our_claims`.
 """
 
 from __future__ import annotations
 
 from mechlib.parallelogram.metamethod import BUDGET_PCT
 from mechlib.reporting import categories as cat
-from mechlib.reporting.claims import ClaimSpec, at_least, at_most, each_within, greater, within
+from mechlib.reporting.claimrules import at_least, at_most, each_within, greater, within
+from mechlib.reporting.claims import ClaimSpec
 
 #: the page's notebook
 PF = "parallelogram_fe"
 #: our mesh has converged when its two finest meshes differ by at most this [%]
 MESH_CONVERGED_PCT = 1.0
-#: our FE reproduces the published sweep within this share of each component's range [%]
+#: our FE reproduces the published sweep within this share of full scale [%]
 SWEEP_AGREEMENT_PCT = 2.0
 
 
@@ -63,13 +64,21 @@ def parallelogram_fe_claims() -> list[ClaimSpec]:
             "ours.parallelogram_fe.sweep_within",
             cat.SOURCE_OURS,
             where,
-            f"our non-linear FE on the page's mesh reproduces the published non-linear 3-D FE "
-            f"sweep within {SWEEP_AGREEMENT_PCT:g} % of each pose component's range",
+            f"our non-linear FE reproduces the published non-linear 3-D FE sweep within "
+            f"{SWEEP_AGREEMENT_PCT:g} % of full scale, on the page's mesh and, where the two "
+            f"differ most, on our finest mesh",
             PF,
             (
                 at_most(
-                    "largest |our FE − published FE|, share of the range",
+                    "largest |our FE − published FE| over the sweep, on the page's mesh, % of "
+                    "full scale",
                     "sweep.ours_vs_published_worst_pct",
+                    SWEEP_AGREEMENT_PCT,
+                    "%",
+                ),
+                at_most(
+                    "at the row where it is largest, on our finest mesh of the mesh study",
+                    "corner.fine_vs_published_pct",
                     SWEEP_AGREEMENT_PCT,
                     "%",
                 ),

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from mechlib.reporting import artefacts
+from mechlib.reporting import artefacts, claimlist, claims
 from mechlib.reporting import categories as cat
 
 #: Every numbered artefact of the thesis that the book reproduces, with its chapter and a short
@@ -64,6 +64,7 @@ HEADLINE_ORDER = (
     cat.CAT_REPRODUCED,
     cat.CAT_SUPPORTED,
     cat.CAT_CONSTRUCTION,
+    cat.CAT_CLAIM_CONSTRUCTION,
     cat.CAT_CONSISTENT_THESIS,
     cat.CAT_OURS,
     cat.CAT_COMPUTED,
@@ -84,12 +85,21 @@ COUNT_GROUPS: tuple[tuple[str, tuple[str, ...]], ...] = (
             cat.CAT_NOT_REPRODUCED,
         ),
     ),
-    ("claims of the thesis", cat.CLAIM_CATEGORIES),
+    ("claims of the thesis, tested", cat.TESTED_CLAIM_CATEGORIES),
+    ("claims of the thesis that no test could fail", (cat.CAT_CLAIM_CONSTRUCTION,)),
     ("beyond the thesis", (cat.CAT_OURS, cat.CAT_COMPUTED)),
     ("not compared", (cat.CAT_REDRAWN,)),
 )
 #: Header of the counts table; :func:`mechlib.pipeline.pagecheck.count_table` finds it by this.
-COUNTS_HEADER = "| Verdict | Counted among | Rows |"
+#: A claim is counted once, however many rows (settings) judge it; any other row once.
+COUNTS_HEADER = "| Verdict | Counted among | Claims or rows |"
+#: a thesis claim's category from its word
+_CLAIM_CATEGORY = {
+    claims.SUPPORTED: cat.CAT_SUPPORTED,
+    claims.NOT_SUPPORTED: cat.CAT_NOT_SUPPORTED,
+    claims.MIXED: cat.CAT_MIXED,
+    claims.BY_CONSTRUCTION: cat.CAT_CLAIM_CONSTRUCTION,
+}
 
 
 @dataclass(frozen=True)
@@ -237,11 +247,43 @@ def thesis_claim_ids(rows: Iterable[ReportRow]) -> list[str]:
     return [r.fields["claim"] for r in claimed]
 
 
+def claim_groups(rows: Iterable[ReportRow]) -> dict[str, list[ReportRow]]:
+    """The rows that judge a registered claim, by the claim they judge whatever the setting
+    (:func:`mechlib.reporting.claimlist.claim_group`), in order of first row.
+
+    Raises
+    ------
+    KeyError
+        For a row naming a claim the registry does not hold.
+    """
+    groups: dict[str, list[ReportRow]] = {}
+    for row in rows:
+        if row.fields.get("claim"):
+            spec = claimlist.claim(row.fields["claim"])
+            groups.setdefault(claimlist.claim_group(spec), []).append(row)
+    return groups
+
+
+def group_category(rows: Sequence[ReportRow]) -> str:
+    """The category of a claim judged by ``rows`` (one per setting): a finding of ours is
+    :data:`~mechlib.reporting.categories.CAT_OURS`; a thesis claim's category is that of its
+    word across settings (:func:`mechlib.reporting.claimlist.group_word`)."""
+    if rows[0].category not in cat.CLAIM_CATEGORIES:
+        return rows[0].category
+    return _CLAIM_CATEGORY[claimlist.group_word(r.fields["verdict"] for r in rows)]
+
+
 def category_counts(rows: Iterable[ReportRow]) -> dict[str, int]:
-    """Number of rows per category, every category present (zero if none), in report order."""
+    """Per category, the claims (counted once whatever the number of settings judging them,
+    :func:`claim_groups`) and the other rows; every category present (zero if none), in report
+    order."""
+    rows = list(rows)
     counts = dict.fromkeys(cat.CATEGORIES, 0)
     for row in rows:
-        counts[row.category] += 1
+        if not row.fields.get("claim"):
+            counts[row.category] += 1
+    for members in claim_groups(rows).values():
+        counts[group_category(members)] += 1
     return counts
 
 
@@ -258,7 +300,6 @@ def counts_table(counts: Mapping[str, int], mark: Callable[[str], str] = str) ->
     lines = [COUNTS_HEADER, "|---|---|---:|"]
     for group, members in COUNT_GROUPS:
         lines += [f"| {mark(category)} | {group} | {counts[category]} |" for category in members]
-    lines.append(f"| all rows | | {sum(counts.values())} |")
     return "\n".join(lines)
 
 
@@ -280,15 +321,20 @@ def _category_summary(category: str, rows: Sequence[ReportRow]) -> str:
 def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
     """One entry per thesis artefact (then any other artefact a row names), in the thesis's order.
 
-    A row naming several artefacts ("Tables 6, 8") counts for each of them.
+    A row counts under the first artefact it names only ("Tables 6, 8": Table 6); the others
+    name that artefact in ``counted_under``. A claim's rows are listed as the claim they judge
+    (``claims``), never as the artefact's verdict, which comes from its other rows (its claims'
+    categories only when it has no other row).
 
     Returns
     -------
     list of dict
         ``artefact`` ("Table 3"), ``chapter``, ``title``, ``pages`` (notebooks whose rows it
         has), ``rows`` (their number), ``counts`` ({category: rows}, only those present),
-        ``verdict`` (the first category present in :data:`HEADLINE_ORDER`, or :data:`NO_ROW`)
-        and ``summary`` (one line: rows and values agreeing per category).
+        ``verdict`` (the first category present in :data:`HEADLINE_ORDER`, or :data:`NO_ROW`),
+        ``claims`` ({claim group: [claim ids]}), ``counted_under`` (artefacts counting rows
+        that name this one too) and ``summary`` (one line: rows and values agreeing per
+        category).
     """
     known = [(k, n) for k, n, _, _ in THESIS_ARTEFACTS]
     named = {a for row in rows for a in row.artefacts}
@@ -296,12 +342,18 @@ def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
     meta = {(k, n): (ch, title) for k, n, ch, title in THESIS_ARTEFACTS}
     out = []
     for key in [*known, *extra]:
-        mine = [r for r in rows if key in r.artefacts]
-        by_cat = {c: [r for r in mine if r.category == c] for c in cat.CATEGORIES}
-        present = {c: rs for c, rs in by_cat.items() if rs}
+        mine = [r for r in rows if r.artefacts and r.artefacts[0] == key]
+        values = [r for r in mine if not r.fields.get("claim")]
+        groups = claim_groups(mine)
+        present = {c: [r for r in values if r.category == c] for c in cat.CATEGORIES}
+        present = {c: rs for c, rs in present.items() if rs}
+        headline = present or {group_category(g): g for g in groups.values()}
         name = artefact_name(*key)
         chapter, title = meta.get(key, (None, ""))
         summary = "; ".join(_category_summary(c, rs) for c, rs in present.items())
+        under = sorted(
+            {artefact_name(*r.artefacts[0]) for r in rows if key in r.artefacts[1:]} - {name}
+        )
         out.append(
             {
                 "artefact": name,
@@ -310,8 +362,10 @@ def rollup(rows: Sequence[ReportRow]) -> list[dict[str, Any]]:
                 "pages": sorted({r.page for r in mine}),
                 "rows": len(mine),
                 "counts": {c: len(rs) for c, rs in present.items()},
-                "verdict": next((c for c in HEADLINE_ORDER if c in present), NO_ROW),
-                "summary": f"{name}: {summary}" if summary else f"{name}: {NO_ROW}",
+                "verdict": next((c for c in HEADLINE_ORDER if c in headline), NO_ROW),
+                "claims": {g: [r.fields["claim"] for r in rs] for g, rs in groups.items()},
+                "counted_under": under,
+                "summary": f"{name}: {summary or NO_ROW}",
             }
         )
     return out

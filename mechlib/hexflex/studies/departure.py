@@ -7,10 +7,10 @@ separate the orders by parity: the part of the departure d(f) = ψ(f) − S f th
 finite rotation (foreshortening of bent flexures, the coupling of tilt and lift) — and the *odd*
 part, (d(f) − d(−f)) / 2 = C(f) + (quintic …), by the third-order ones — among them the
 stiffening of flexures that stretch as they bend, beside third-order kinematic terms.
-:func:`parity_split` computes both from runs at
-±f; :func:`parity_summary` states them, like Table 5's errors, as shares of each component's
-range. :func:`linear_poses` gives the linear counterpart of a non-linear solve on the same mesh
-and quadrature, and :func:`relative_change` compares a quantity between two discretisations.
+:func:`parity_split` computes both from runs at ±f; :func:`parity_summary` states them, like
+Table 5's errors, in % of full scale. :func:`linear_poses` gives the linear counterpart of a
+non-linear solve on the same mesh and quadrature, and :func:`relative_change` compares a
+quantity between two discretisations.
 """
 
 from __future__ import annotations

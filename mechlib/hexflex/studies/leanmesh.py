@@ -3,7 +3,7 @@
 A cheaper model is judged by what the book reports, not by its compliance at fixed dimensions:
 the lean model (:func:`mechlib.hexflex.fe.lean.lean_model`) is first fitted to the magnitudes the
 default model achieves (:func:`fit_lean`), then both solve the same non-linear runs, and
-:func:`compare` states each pose component's difference as % of its range and the difference of
+:func:`compare` states each pose component's difference as % of full scale and the difference of
 the departures from linearity (each model's non-linear minus its own linear pose) as % of the
 default model's largest departure of that component. The criteria (``POSE_PCT``,
 ``DEPARTURE_PCT``) are those a cheaper run must meet to replace the default one in the book's
@@ -25,7 +25,7 @@ from mechlib.hexflex.campaign.experiments import ModelSpec
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
 from mechlib.params import check_float, check_int, check_matrix
 
-#: Poses within this % of each component's range, departures within this % of themselves.
+#: Poses within this % of full scale, departures within this % of themselves.
 POSE_PCT, DEPARTURE_PCT = 0.1, 1.0
 #: The lean fit's tolerance (max |log(achieved / target)|): a tenth of the model page's 1e-3,
 #: so that the comparison measures the mesh and not where two fits stopped within 0.1 %.
@@ -267,7 +267,7 @@ def meets_criteria(pose_pct: object, departure_pct: object, failed_on_lean_only:
     Parameters
     ----------
     pose_pct : array_like
-        Pose differences, % of each component's range (:func:`compare`), finite, not empty.
+        Pose differences, % of full scale (:func:`compare`), finite, not empty.
     departure_pct : array_like
         Departure differences, % of the departure (:func:`compare`), finite, not empty.
     failed_on_lean_only : int

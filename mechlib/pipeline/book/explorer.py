@@ -48,9 +48,9 @@ PRESET = (0.6, -0.4, 0.3, 0.8, -0.5, -0.7)
 """The preset forces of the printed figure, as shares of the validated force range: every
 force non-zero, so that all six pose components move."""
 DISPLAY_RESOLUTION = 1e-4
-"""Pose values are shown to this share of their component's range (decimals per component)."""
+"""Pose values are shown to this fraction of full scale (decimals per component)."""
 CHECK_TOLERANCE = 1e-12
-"""The model's own check poses must be met to this share of each component's range."""
+"""The model's own check poses must be met to this fraction of full scale."""
 VALIDATION_KEYS = ("worst_pct", "range", "S_T", "heldout_runs", "teacher", "degree")
 """What the model's ``validation`` must hold for the page."""
 

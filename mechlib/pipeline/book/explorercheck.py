@@ -58,9 +58,9 @@ TARGET_SHARE = 0.9
 SEED = 2010
 """Seed of the Sobol' scrambling and of the targets' forces."""
 POSE_TOL = 1e-12
-"""Largest allowed |page − Python| pose difference, as a share of each component's range."""
+"""Largest allowed |page − Python| pose difference, as a fraction of full scale."""
 ROUND_TRIP_TOL = 1e-10
-"""Largest allowed |pose(forces found) − target| (Python's pose), as a share of each range."""
+"""Largest allowed |pose(forces found) − target| (Python's pose), as a fraction of full scale."""
 FORCE_TOL = 1e-9
 """Largest allowed |forces found − forces that made the target| [N]."""
 N_JACOBIANS = 4
@@ -68,7 +68,7 @@ N_JACOBIANS = 4
 FD_STEP = 1e-5
 """Step [N] of the central differences the page's Jacobian is compared with."""
 JACOBIAN_TOL = 1e-7
-"""Largest allowed |page Jacobian − central differences|, as a share of each range per N."""
+"""Largest allowed |page Jacobian − central differences|, as a fraction of full scale per N."""
 TIMING_MS = 200
 """The check page times poses for at least this long."""
 PAGE_BUDGET = 100_000

@@ -92,7 +92,7 @@ def widget_html(data: Mapping[str, Any], script: str) -> str:
             "<caption>The stage's pose for these forces</caption>",
             "<thead><tr><th>pose component</th><th>unit</th><th>real-time model</th>"
             "<th>linear S<sub>T</sub> (Eq 8)</th><th>model − S<sub>T</sub></th>"
-            f"<th>model's worst error on {heldout} held-out runs</th></tr></thead>",
+            f"<th>model's worst error against our FE on {heldout} held-out runs</th></tr></thead>",
             "<tbody>",
             *rows,
             "</tbody></table></div>",
@@ -151,7 +151,7 @@ def page_markdown(
             "real-time model",
             "linear S_T (Eq 8)",
             "model − S_T",
-            f"model's worst error on {heldout} held-out runs",
+            f"model's worst error against our FE on {heldout} held-out runs",
         ],
         [
             [o, u, _fmt(p, d), _fmt(q, d), _fmt(p - q, d), f"±{_fmt(w / 100 * r, d)}"]
@@ -179,7 +179,12 @@ def page_markdown(
             f"model of the non-linear HexFlex: a Legendre polynomial of total degree "
             f"{data['degree']} ({data['terms']} terms a pose component) fitted to the "
             f"{v['teacher']}. On {heldout} held-out non-linear finite-element runs with forces "
-            f"within ±{amp:g} N it misses by at most {worst:.3g} % of a pose component's range. "
+            f"within ±{amp:g} N it misses by at most {worst:.3g} % of full scale. That error is "
+            "against our finite-element model — one member of the family of parts with Eq 8's "
+            "compliance, on its lean mesh, under dead loads — not against a device: the "
+            "{doc}`family page </chapters/nonlinear_family>` shows members with the same S_T "
+            "departing from one another by far more, and forces that turn with the tabs "
+            "(follower loads) would move the poses too. "
             "This page evaluates that model in your browser. Set the six actuator forces (the "
             "thesis's names: tab T1 to T3, direction D1 in the plate's plane, D2 out of it) and "
             "it shows the stage's pose by the model beside the pose by the linear S_T of Eq 8, "

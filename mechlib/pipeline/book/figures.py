@@ -76,7 +76,7 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
     "nonlinear_metamodels": {
         "mm-12": (
             "Learning curves on the non-linear HexFlex: the largest error over the held-out "
-            "non-linear runs at ±1 N (worst pose component, % of its range) against the number "
+            "non-linear runs at ±1 N (worst pose component, % of full scale) against the number "
             "of full non-linear FE runs each model was trained on; lines: fitted families on "
             "nested Sobol' designs; points: the thesis's fits on Table 4's runs and the "
             "reduced-order model; dashed: the error budget.",
@@ -84,20 +84,20 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "meta-model family, three single markers, and a horizontal dashed budget line.",
         ),
         "mm-15": (
-            "Largest error (worst pose component, % of its range) of each model at each force "
+            "Largest error (worst pose component, % of full scale) of each model at each force "
             "range, every fitted family trained at that range; dashed: the error budget.",
             "Log-log plot of error in percent against the force range in newtons, one line per "
             "model, with a horizontal dashed budget line.",
         ),
         "mm-20": (
-            "Accuracy against speed: each model's largest error at ±1 N (% of range) against "
+            "Accuracy against speed: each model's largest error at ±1 N (% of full scale) against "
             "the time to predict one pose on the machine that built the page; dashed: the "
             "error budget; dotted: the real-time deadline.",
             "Scatter plot on logarithmic axes, one marker per model, with a horizontal dashed "
             "budget line and a vertical dotted deadline line.",
         ),
         "rt-01": (
-            "Largest error at ±1 N (worst pose component, % of its range) against the full "
+            "Largest error at ±1 N (worst pose component, % of full scale) against the full "
             "non-linear runs used for training: the plain Gaussian process, the "
             "reduced-order model corrected by a Gaussian process of the forces fitted to its "
             "misses, and corrected by an error model on its dual-weighted residuals; the "
@@ -133,8 +133,8 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
         "cell-23": (
             "Table 5(b): the errors of the linear meta-model against the geometrically "
             "non-linear FE runs, taken over the first k runs, for every k.",
-            "Curves of the largest pointwise and range-relative errors per pose component "
-            "against the number of non-linear runs.",
+            "Curves of the largest pointwise errors and errors in % of full scale per pose "
+            "component against the number of non-linear runs.",
         ),
         "cell-31": (
             "Thesis Fig 8 on our model: the deformed shape of the first validation run (in-plane "
@@ -226,7 +226,7 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
         "pfe-20": (
             "Chapter 2's meta-model families on our FE of the parallelogram flexure: the largest "
             "error on held-out non-linear FE runs over the benchmark's load box (worst pose "
-            "component, % of its range) against the training runs; dashed, the error budget.",
+            "component, % of full scale) against the training runs; dashed, the error budget.",
             "Log-log curves of error against training runs, one per family, above a dashed "
             "horizontal budget line.",
         ),

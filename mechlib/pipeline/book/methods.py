@@ -15,7 +15,23 @@ from pathlib import Path
 
 import matplotlib.pyplot as plt
 
+from mechlib.metamodels.metrics import FULL_SCALE, FULL_SCALE_DEFINITION
+from mechlib.metamodels.realtime import DEADLINE_US
 from mechlib.pipeline.book.diagrams import Loop, Step, flow_diagram
+
+#: the measures every page of the book uses, defined once here (on the method page of Fig 1)
+MEASURES = f"""\
+## Measures used throughout this book
+
+**{FULL_SCALE}.** {FULL_SCALE_DEFINITION} MAXABS (Eq 10) and RMSE (Eq 11) are absolute errors, in
+the pose component's units; "% of full scale" divides MAXABS by the full scale. Where two sets of
+runs give two numbers for one quantity, the sentence names the set of runs.
+
+**Real time.** A model is real-time when one pose, one call at a time, takes at most
+{DEADLINE_US:g} µs: the period of a {1e3 / DEADLINE_US:g} kHz control loop. The thesis names no
+rate; piezo-driven nano-positioners such as the HexFlex are commonly controlled at 10–50 kHz.
+Every timing judgement of the book uses this one deadline.
+"""
 
 
 @dataclass(frozen=True)
@@ -37,6 +53,7 @@ class MethodFigure:
     caption: str
     steps: tuple[MethodStep, ...]
     loop: Loop | None = None
+    notes: str = ""  # Markdown after the table: definitions the whole book uses
 
 
 FIG1 = MethodFigure(
@@ -95,6 +112,7 @@ FIG1 = MethodFigure(
             ),
         ),
     ),
+    notes=MEASURES,
 )
 
 FIG9 = MethodFigure(
@@ -207,6 +225,8 @@ def page_markdown(method: MethodFigure, image: str, link: Callable[[str, str], s
             f"After step {method.loop.source + 1}: {method.loop.label} "
             f"(back to step {method.loop.target + 1}).",
         ]
+    if method.notes:
+        lines += ["", method.notes.rstrip("\n")]
     return "\n".join(lines) + "\n"
 
 
