@@ -214,6 +214,36 @@ def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
     assert "{category}`diverges`: non-linear" in table  # the category (marked), then the cause
 
 
+def test_printed_numbers_floor_p_values_round_times_and_drop_a_repeated_maximum() -> None:
+    text = "Wilcoxon p = 2.1e-126 (met); p = 5.4e-09; 1.6001 µs against 2.2942e+05 µs, 110.3 µs"
+    assert reportpage.print_numbers(text) == (
+        "Wilcoxon p < 1e-10 (met); p = 5.4e-09; 1.6 µs against 230,000 µs, 110 µs"
+    )
+    assert reportpage.print_numbers("72 values (12 × 6) from -1 to 1, max |x| = 1") == (
+        "72 values (12 × 6) from -1 to 1"
+    )
+
+
+def test_rows_beyond_the_thesis_go_to_the_appendix_grouped_by_page(tmp_path: Path) -> None:
+    beyond = [
+        report.computed_row("Beyond the thesis: lean mesh", "largest difference [%]", [0.03]),
+        report.compare_row(
+            "Table 3", "ME of x, m = 7", [110.73], [110.86], rtol=0.01, source="ours"
+        ),
+    ]
+    (tmp_path / "a.json").write_text(json.dumps({"notebook": "a", "report": ROWS[:2]}))
+    (tmp_path / "b.json").write_text(json.dumps({"notebook": "b", "report": beyond}))
+    chapters = [reportpage.Chapter(2, "Chapter 2 — x", ("a", "b"))]
+    link = bookbuild.Linker({"b": [artefacts.Section("b-s1", "Page B", ())]})
+    rows = bookbuild.report_rows(tmp_path, chapters)
+    main = bookbuild.report_markdown(rows, chapters, link)
+    appendix = bookbuild.appendix_markdown(rows, chapters, link)
+    assert "largest difference" not in main and "2 more rows of this chapter" in main
+    assert "## Page B" in appendix and "{doc}`lean mesh </chapters/b>`" in appendix
+    assert "110.9 (published 110.73; difference" in appendix and "computed" in appendix
+    assert "err" not in appendix.split("## Page B")[1]
+
+
 # --- toc and report assembly ---------------------------------------------------------------------
 def _book(tmp_path: Path, toc: dict) -> Path:
     (tmp_path / "chapters").mkdir()

@@ -41,7 +41,7 @@ INLINE_MATH = re.compile(r"\\\(.*?\\\)")  # math in a title: typeset, so not com
 # the smallest text a printed page may hold; math's second-level scripts as in a 10 pt LaTeX book
 MIN_FONT_PT = {"text": 7.0, "math": 5.0}
 TOGGLE = re.compile(r"(?:Show|Hide) code cell (?:source|outputs?|content)")
-CAPTION = re.compile(r"Figure\s+\d+\b")  # numfig_format of book/_config.yml
+CAPTION = re.compile(r"Figure\s+(?:[A-Z]\.)?\d+\b")  # numfig_format of book/_config.yml (B.1)
 CAPTION_TOP_PT = 24.0  # a caption this close to the top margin has no figure above it
 ICON_FONTS = ("FontAwesome",)  # glyphs of icons, not text
 ZOOM = 3  # pdftohtml's largest zoom: font sizes in thirds of a point
