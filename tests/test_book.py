@@ -171,10 +171,11 @@ def test_prepare_notebook_applies_every_rule(tmp_path: Path) -> None:
     assert [c["metadata"].get("tags") for c in out["cells"]] == [
         None,
         ["parameters"],
+        None,  # the parameters as printed (printparams)
         ["hide-input"],
         ["remove-cell"],
     ]
-    assert out["cells"][3]["outputs"][0]["text"] == "record written to r.json\n"
+    assert out["cells"][4]["outputs"][0]["text"] == "record written to r.json\n"
     assert secs[0].label == "my-nb-s1" and out["cells"][0]["source"].startswith("(my-nb-s1)=")
     assert nb["cells"][2]["metadata"]["tags"] == []  # the input is not modified
 
@@ -242,6 +243,19 @@ def test_rows_beyond_the_thesis_go_to_the_appendix_grouped_by_page(tmp_path: Pat
     assert "## Page B" in appendix and "{doc}`lean mesh </chapters/b>`" in appendix
     assert "110.9 (published 110.73; difference" in appendix and "computed" in appendix
     assert "err" not in appendix.split("## Page B")[1]
+
+
+def test_the_printed_parameters_are_a_compact_table_of_values_and_units() -> None:
+    from mechlib.pipeline.book import printparams
+
+    cell = {"id": "p", "source": "# fmt: off\nt = 0.5  # mm, thickness\nseed = 1  # seed\nw = 2\n"}
+    printed = printparams.print_cell(cell)
+    assert printed["source"].startswith(":::{container} print-only params-print")
+    assert (
+        "* - `t`\n  - `0.5` mm\n  - `seed`\n  - `1`\n* - `w`\n  - `2`\n  - \n  - "
+        in (printed["source"])
+    )
+    assert printparams.print_cell({"source": "# no parameters\n"}) is None
 
 
 # --- toc and report assembly ---------------------------------------------------------------------
@@ -332,12 +346,13 @@ def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_dire
         ]
     }  # fmt: skip
     out, _ = cells.prepare_notebook(nb, "p", Path("/nowhere"))
-    assert len(out["cells"]) == 2
+    assert len(out["cells"]) == 3
     params = out["cells"][0]["source"]
     assert "fmt" not in params and "seed = 1  # the seed" in params
     assert "geometry = {'a': 1}  # passed by the build; from the model" in params
     assert "extra = 2  # passed by the build" in params
-    assert out["cells"][1]["source"] == "x = [1,  2]\nx\n"
+    assert "`{'a': 1}`" in out["cells"][1]["source"]  # printed with the value it ran with
+    assert out["cells"][2]["source"] == "x = [1,  2]\nx\n"
 
 
 def test_a_notebook_still_executing_is_no_chapter(tmp_path: Path) -> None:
