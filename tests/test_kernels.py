@@ -49,3 +49,20 @@ def test_openblas_coretype_sets_the_kernel_a_process_reports(kernel: str) -> Non
         env=env, capture_output=True, text=True, check=True,
     )  # fmt: skip
     assert out.stdout.strip() == kernel
+
+
+def test_spread_lists_values_that_move_more_than_a_tenth_of_their_tolerance(
+    tmp_path: Path,
+) -> None:
+    ref = {"values": {"x": {"value": [1.0, 2.0], "rtol": 1e-3, "atol": 0.0},
+                      "n": {"value": 3, "rtol": 0.0, "atol": 0.0}}}  # fmt: skip
+    (tmp_path / "ref").mkdir()
+    (tmp_path / "ref" / "nb.json").write_text(json.dumps(ref))
+    for kernel, x in (("A", [1.0, 2.0]), ("B", [1.0, 2.0005])):
+        (tmp_path / kernel).mkdir()
+        rec = {"values": {"x": {"value": x}, "n": {"value": 3}}}
+        (tmp_path / kernel / "nb.json").write_text(json.dumps(rec))
+    runs = {k: tmp_path / k for k in "AB"}
+    rows = kernels.spread(runs, tmp_path / "ref")
+    assert len(rows) == 1 and rows[0].startswith("nb x[1]: spread 0.0005 = 0.25 of its tolerance")
+    assert kernels.spread(runs, tmp_path / "ref", share=0.3) == []

@@ -108,7 +108,7 @@ def spread(runs: dict[str, Path], references: Path, share: float = 0.1) -> list[
             )
             worst = float(np.max(ratio)) if ratio.size else 0.0
             if worst > share:
-                i = np.unravel_index(int(np.argmax(ratio)), ratio.shape) if ratio.ndim else ()
+                i = tuple(int(j) for j in np.unravel_index(int(np.argmax(ratio)), ratio.shape))
                 rows.append((worst, f"{ref_path.stem} {key}{list(i) if i else ''}: spread "
                              f"{float(np.asarray(width)[i]):.3g} = {worst:.3g} of its tolerance "
                              f"{float(np.asarray(tol)[i]):.3g} (values "

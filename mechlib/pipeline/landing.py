@@ -236,8 +236,8 @@ def counts_sentence(claim_ids: Sequence[str] = ()) -> str:
         f" The report's {rows} rows on the thesis's claims judge {distinct} distinct claims"
         + (
             f", {several} of them once per setting (the report names each row's setting); the "
-            f"table counts such a claim once, under the word its settings share or as mixed "
-            f"when they differ"
+            f"table counts such a claim once, under the word its settings share, or under the "
+            f"word for settings that disagree"
             if rows > distinct
             else ""
         )

@@ -123,7 +123,7 @@ def outcome_markdown(
     words = {g: claimlist.group_word(v.word for v in m) for g, m in groups.items()}
     heads = (
         ("Claims of the thesis true only by construction", (claims.BY_CONSTRUCTION,)),
-        ("Claims of the thesis supported when tested", (claims.SUPPORTED,)),
+        ("Claims of the thesis borne out when tested", (claims.SUPPORTED,)),
         (
             "Claims of the thesis that fail when tested, in part or in whole",
             (claims.NOT_SUPPORTED, claims.MIXED),
