@@ -171,6 +171,7 @@ LOW_PRIORITY = setsid --wait sh -c 'if test -w /proc/self/autogroup; then echo 5
 
 # the steps of `make test` (each a sub-make with its own job slots)
 test-first: $(STAMP)
+	$(if $(TEST_KERNEL),$(KERNELS) forget $(BUILD)/records $(BUILD)/executed $(TEST_KERNEL))
 	$(WITH_KERNEL) $(MAKE) --no-print-directory -j2 notebooks
 	$(if $(TEST_KERNEL),MECHLIB_TEST_KERNEL=$(TEST_KERNEL)) $(MAKE) --no-print-directory check-records
 

@@ -66,3 +66,13 @@ def test_spread_lists_values_that_move_more_than_a_tenth_of_their_tolerance(
     rows = kernels.spread(runs, tmp_path / "ref")
     assert len(rows) == 1 and rows[0].startswith("nb x[1]: spread 0.0005 = 0.25 of its tolerance")
     assert kernels.spread(runs, tmp_path / "ref", share=0.3) == []
+
+
+def test_notebooks_executed_with_another_kernel_are_forgotten(tmp_path: Path) -> None:
+    _write(tmp_path / "rec", "a", "Haswell")
+    _write(tmp_path / "rec", "b", "Sandybridge")
+    (tmp_path / "ex").mkdir()
+    for name in "abc":
+        (tmp_path / "ex" / f"{name}.ipynb").write_text("{}")
+    assert kernels.forget_other_kernels(tmp_path / "rec", tmp_path / "ex", "Sandybridge") == ["a"]
+    assert sorted(p.stem for p in (tmp_path / "ex").glob("*.ipynb")) == ["b", "c"]

@@ -4,15 +4,16 @@ own nor the one the references were recorded with.
 OpenBLAS picks its kernels at run time for the processor it finds (``Haswell`` on a Zen-1 EPYC,
 ``SkylakeX`` on an AVX-512 one), and each kernel rounds differently. A record that hinges on
 round-off then passes on the machine that recorded it and fails on another. ``make test`` runs
-every notebook twice under :func:`other_kernel` (``OPENBLAS_CORETYPE``): both runs are compared
-with ``tests/references`` at their tolerances — which so hold across kernels — and with each
-other byte for byte — which checks determinism on one kernel. ``make references`` refuses
+every notebook twice under :func:`other_kernel` (``OPENBLAS_CORETYPE``): the first run's records
+are compared with ``tests/references`` at their tolerances — which so hold across kernels — and
+the second run's with the first's byte for byte — which checks determinism on one kernel. ``make references`` refuses
 records not computed with the machine's own kernel (:func:`check_own_kernel`), so the two never
 coincide by accident.
 
 ``python -m mechlib.pipeline.kernels other`` prints the kernel's name; ``own`` prints this
 process's; ``spread`` lists the recorded numbers whose spread across the records of several
-kernels exceeds a tenth of their tolerance (:func:`spread`).
+kernels exceeds a tenth of their tolerance (:func:`spread`); ``forget`` removes the executed
+notebooks computed with another kernel (:func:`forget_other_kernels`).
 """
 
 from __future__ import annotations
@@ -116,9 +117,30 @@ def spread(runs: dict[str, Path], references: Path, share: float = 0.1) -> list[
     return [text for _, text in sorted(rows, key=lambda r: -r[0])]
 
 
+def forget_other_kernels(records: Path, executed: Path, kernel: str) -> list[str]:
+    """Remove each executed notebook of ``executed`` whose record in ``records`` was computed with
+    another kernel than ``kernel`` (so ``make`` executes it again); return their names.
+
+    ``make test`` calls it before its first run: a notebook ``make book`` executed with the
+    machine's own kernel is not taken for one executed with the test's.
+    """
+    gone = []
+    for path in sorted(Path(records).glob("*.json")):
+        nb = Path(executed) / f"{path.stem}.ipynb"
+        if nb.exists() and json.loads(path.read_text()).get("blas") != kernel:
+            nb.unlink()
+            gone.append(path.stem)
+    return gone
+
+
 def main(argv: list[str] | None = None) -> int:
     """``own`` or ``other [references folder]``: print a kernel's name."""
     args = sys.argv[1:] if argv is None else argv
+    if args and args[0] == "forget":  # forget <records> <executed> <kernel>
+        gone = forget_other_kernels(Path(args[1]), Path(args[2]), args[3])
+        if gone:
+            print(f"executed again with the {args[3]} kernel: {', '.join(gone)}")
+        return 0
     if args and args[0] == "spread":  # spread <references> <kernel>=<records folder> ...
         runs = dict(a.split("=", 1) for a in args[2:])
         for line in spread({k: Path(v) for k, v in runs.items()}, Path(args[1])):
