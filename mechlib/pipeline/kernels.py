@@ -5,10 +5,10 @@ OpenBLAS picks its kernels at run time for the processor it finds (``Haswell`` o
 ``SkylakeX`` on an AVX-512 one), and each kernel rounds differently. A record that hinges on
 round-off then passes on the machine that recorded it and fails on another. ``make test`` runs
 every notebook twice under :func:`other_kernel` (``OPENBLAS_CORETYPE``): the first run's records
-are compared with ``tests/references`` at their tolerances — which so hold across kernels — and
-the second run's with the first's byte for byte — which checks determinism on one kernel. ``make references`` refuses
-records not computed with the machine's own kernel (:func:`check_own_kernel`), so the two never
-coincide by accident.
+are compared with ``tests/references`` at their tolerances — which so hold across kernels — and the
+second run's with the first's byte for byte — which checks determinism on one kernel. ``make
+references`` refuses records not computed with the machine's own kernel (:func:`check_own_kernel`),
+so the two never coincide by accident.
 
 ``python -m mechlib.pipeline.kernels other`` prints the kernel's name; ``own`` prints this
 process's; ``spread`` lists the recorded numbers whose spread across the records of several
