@@ -96,3 +96,23 @@ def test_no_cell_prints_what_a_record_returns(notebook) -> None:
     cells = json.loads(notebook.read_text())["cells"]
     code = ["".join(c["source"]) for c in cells if c["cell_type"] == "code"]
     assert echoed_records(code) == []
+
+
+def test_no_markdown_line_starts_with_a_percent_sign() -> None:
+    """MyST reads a line that starts with ``%`` as a comment: its text, glued values included,
+    would vanish from the page (a reflowed "… 41.9\\n% of full scale" did)."""
+    import json
+
+    from mechlib.paths import REPO_ROOT
+
+    bad = []
+    for path in sorted((REPO_ROOT / "notebooks").glob("*.ipynb")):
+        for i, cell in enumerate(json.loads(path.read_text())["cells"]):
+            if cell["cell_type"] == "markdown":
+                lines = "".join(cell["source"]).split("\n")
+                bad += [
+                    f"{path.name} cell {i}: {ln[:60]}" for ln in lines if ln.lstrip()[:1] == "%"
+                ]
+    for path in sorted((REPO_ROOT / "book").glob("*.md")):
+        bad += [f"{path.name}: {ln[:60]}" for ln in path.read_text().split("\n") if ln[:1] == "%"]
+    assert not bad, "\n".join(bad)
