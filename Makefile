@@ -47,7 +47,8 @@ unexport PYTHONDONTWRITEBYTECODE
         bench lock clean store store-seed store-check book-checks determinism-check
 
 help:
-	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks)"
+	@echo "make book        build the HTML book (creates .venv from environment.lock, executes notebooks,"
+	@echo "                 one per core in the order of their inputs; BOOK_JOBS=1: one at a time)"
 	@echo "                 PROFILE=full: notebooks/profiles/full/ (a finer mesh-convergence study of the linear model)"
 	@echo "make test        unit tests + every notebook + reference comparison + book build and checks"
 	@echo "make check-browser  open every built page in headless Chromium, network off (needs chromium)"
@@ -57,6 +58,7 @@ help:
 	@echo "make run NB=name ARGS='-p key value ...'   re-run one notebook with new parameters"
 	@echo "make references  re-record tests/references/ from a fresh run and show what changed"
 	@echo "make bench       speed benchmarks (ratios measured in one run); ONLY=nonlinear,chapter: some"
+	@echo "                 ONLY=book: make book on a fresh clone of HEAD, its time and each chapter's"
 	@echo "make pdf         print the built book to book/_build/pdf/book.pdf (headless Chromium; after make book)"
 	@echo "make check-pdf   check that PDF: page count, page titles, every figure, no raw TeX"
 	@echo "make lock        regenerate environment.lock from requirements.in"
@@ -106,9 +108,14 @@ $(foreach e,$(NB_DEFERRED),$(eval $(BUILD)/executed/$(word 1,$(subst :, ,$(e))).
 
 notebooks: $(EXECUTED)
 
-# The HTML is rebuilt from scratch (seconds): an incremental Sphinx build re-reports no warning of
-# an unchanged page and skips copying book/_static when no page changed.
-book: $(EXECUTED)
+# The chapters run in parallel, each after those whose records fill its inputs (the graph above,
+# as in make test): a plain `make book` starts a sub-make with BOOK_JOBS job slots, one per core
+# (at most 4: each chapter's kernel holds its own FE models; BOOK_JOBS=1 runs them one at a
+# time). The HTML is rebuilt from scratch (seconds): an incremental Sphinx build re-reports no
+# warning of an unchanged page and skips copying book/_static when no page changed.
+BOOK_JOBS   ?= $(shell n=$$(nproc 2>/dev/null || echo 1); echo $$(( n < 4 ? n : 4 )))
+book: $(STAMP)
+	$(MAKE) --no-print-directory -j$(BOOK_JOBS) notebooks
 	$(PIPELINE) book --executed $(BUILD)/executed --records $(BUILD)/records --book book --profile $(PROFILE)
 	rm -rf book/_build
 	$(VENV)/bin/jupyter-book build book -W -n --keep-going --quiet

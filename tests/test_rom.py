@@ -230,6 +230,37 @@ def test_one_exact_newton_correction_from_the_rom_state_nearly_reaches_the_full_
                                atol=1e-12 * np.abs(linear[0]).max())  # fmt: skip
 
 
+def test_batched_linear_indicators_equal_the_residual_of_each_run(
+    solver: NonlinearSolver, hyper: rm.ReducedOrderModel
+) -> None:
+    # every force vector at once (projected_internal_force) against one assembled residual a run
+    f = _forces(5, RANGE, seed=3)
+    batched = indicators.dual_weighted_residuals(hyper, solver, f)
+    adjoint = indicators.pose_adjoint(solver)
+    loads = solver.model.load_vectors()
+    one_by_one = np.array([
+        -(solver.residual(hyper.basis @ q, loads @ x) @ adjoint)
+        for q, x in zip(hyper.coordinates(f), f, strict=True)
+    ])  # fmt: skip
+    np.testing.assert_allclose(batched, one_by_one, rtol=1e-9,
+                               atol=1e-12 * np.abs(one_by_one).max())  # fmt: skip
+    # any chunk of elements gives the same sums, to round-off
+    q = hyper.coordinates(f)
+    a = indicators.projected_internal_force(solver.batched, hyper.basis, q, adjoint, chunk=1)[0]
+    b = indicators.projected_internal_force(solver.batched, hyper.basis, q, adjoint, chunk=500)[0]
+    np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12 * np.abs(b).max())
+
+
+def test_a_state_that_inverts_an_element_is_named(
+    solver: NonlinearSolver, hyper: rm.ReducedOrderModel
+) -> None:
+    q = np.zeros((3, hyper.n_basis))
+    q[1] = -1e3 * hyper.loads[:, 0] / np.linalg.norm(hyper.loads[:, 0])  # far beyond any load
+    adjoint = indicators.pose_adjoint(solver)
+    _, inverted = indicators.projected_internal_force(solver.batched, hyper.basis, q, adjoint)
+    assert inverted.tolist() == [False, True, False]
+
+
 def test_indicators_refuse_bad_input(solver: NonlinearSolver, hyper: rm.ReducedOrderModel) -> None:
     with pytest.raises(ValueError, match="tangent must be one of"):
         indicators.dual_weighted_residuals(hyper, solver, np.zeros(6), tangent="secant")

@@ -34,6 +34,9 @@
 - A campaign on a Dask cluster against the local worker pool (:mod:`mechlib.bench.dask`): the
   same non-linear runs on the same number of single-threaded workers, on a cluster the
   benchmark starts itself; the ratio of the two times and whether the poses are bit-identical.
+- The main job as a reader runs it (:mod:`mechlib.bench.book`, ``--only book``, not in the
+  default run: it builds the whole book): ``make book`` on a fresh clone of HEAD, its wall time
+  and each chapter's papermill duration.
 """
 
 from __future__ import annotations
@@ -150,6 +153,8 @@ SECTIONS: tuple[str, ...] = (
     "lean",
     "dask",
 )
+#: Sections run only when named (``--only``): the book section clones and builds the book.
+ON_REQUEST: tuple[str, ...] = ("book",)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -161,12 +166,15 @@ def main(argv: list[str] | None = None) -> int:
 
     parser = argparse.ArgumentParser(prog="python -m mechlib.bench", description=__doc__)
     parser.add_argument(
-        "--only", default=",".join(SECTIONS), help=f"comma-separated sections of {SECTIONS}"
+        "--only",
+        default=",".join(SECTIONS),
+        help=f"comma-separated sections of {SECTIONS + ON_REQUEST} (default all but {ON_REQUEST})",
     )
     only = [x for x in parser.parse_args(argv).only.split(",") if x]
-    unknown = sorted(set(only) - set(SECTIONS))
+    unknown = sorted(set(only) - set(SECTIONS + ON_REQUEST))
     if unknown:
-        parser.error(f"--only: unknown sections {unknown}; allowed: {', '.join(SECTIONS)}")
+        allowed = ", ".join(SECTIONS + ON_REQUEST)
+        parser.error(f"--only: unknown sections {unknown}; allowed: {allowed}")
     if "postures" in only:
         _print_postures()
     if "load-cases" in only:
@@ -195,6 +203,10 @@ def main(argv: list[str] | None = None) -> int:
         from mechlib.bench import dask
 
         print("\n".join(dask.report(dask.dask_vs_local())))
+    if "book" in only:
+        from mechlib.bench.book import print_book
+
+        print_book()
     return 0
 
 
