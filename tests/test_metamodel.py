@@ -167,7 +167,7 @@ def _smooth(x: np.ndarray) -> np.ndarray:
     return np.column_stack([np.cos(1.5 * x[:, 0]) + x[:, 1] * x[:, 2], x @ [1.0, -2.0, 0.5]])
 
 
-# On the linear output the optimiser runs the RBF length scales off towards infinity (as
+# On the linear output the optimiser runs the RBF length scales to their upper bound (as
 # fit_gp's docstring says) and L-BFGS may stop there "ABNORMAL"; that warning is expected here.
 @pytest.mark.filterwarnings("ignore:lbfgs failed to converge")
 def test_fit_gp_interpolates_its_runs_and_recovers_a_linear_response() -> None:
@@ -175,10 +175,10 @@ def test_fit_gp_interpolates_its_runs_and_recovers_a_linear_response() -> None:
     y = _smooth(x)
     gp = gaussian_process.fit_gp(x, y, seed=0)
     scale = y.std(axis=0)
-    # a GP with a (fitted, near-zero) white-noise term nearly interpolates its training runs
+    # a GP with a (fitted, small) relative nugget nearly interpolates its training runs
     at_runs = np.abs(gaussian_process.predict_gp(gp, x) - y).max(axis=0) / scale
     assert np.all(at_runs < 1e-2)
-    # a linear response is reproduced away from the runs too (infinite length scales)
+    # a linear response is reproduced away from the runs too (length scales on their bound)
     fresh = np.random.default_rng(5).uniform(-1, 1, (200, 3))
     off_runs = np.abs(gaussian_process.predict_gp(gp, fresh) - _smooth(fresh)).max(axis=0) / scale
     assert off_runs[1] < 1e-3

@@ -7,16 +7,19 @@ One scikit-learn process per output, on inputs scaled to the validated range (u 
 rather than a free white-noise level. FE responses are noise-free, and with a free noise level
 the likelihood drives it to its bound and the lengths to infinity, where the kernel matrix's
 condition number passed 1e18 on the parallelogram's runs: its predictions then moved by 1.6 % of
-themselves between two BLAS kernels of one machine. With η ≥ ``NUGGET_BOUNDS[0]`` the
-condition number is at most 1 + n / η (n runs), about 3e10 for 300 runs, and the same fits
-agree to 2e-6 of themselves across the SkylakeX, Haswell and Sandybridge kernels.
+themselves between two BLAS kernels of one machine (measured for commit e774242). With
+η ≥ ``NUGGET_BOUNDS[0]`` the condition number is at most 1 + n / η (n runs), about 3e10 for 300
+runs, and the parallelogram's fits agree to 2e-6 of themselves across the SkylakeX, Haswell and
+Sandybridge kernels. A fit whose inputs carry round-off of their own (the indicator error model
+of :mod:`.correction`) can still move more: see its record's tolerance.
 
-The hyper-parameters (log c, log ℓ, log η) are the likelihood's optimum, not wherever an
+The hyper-parameters (log c, log ℓ, log η) are the likelihood's optimum within the bounds below
+(on noise-free linear runs ℓ ends on its upper bound and η on its floor), not wherever an
 optimiser happened to stop: L-BFGS-B runs with no relative-decrease stop (``ftol = 0``) until its
 projected gradient is below ``GTOL`` (or it can no longer decrease the objective in floating
 point), from the unit start and ``RESTARTS`` seeded starts; the best likelihood wins. scikit-
 learn's default stop (``ftol`` ≈ 2e-9) left two of the parallelogram's full-box fits on a
-plateau of white noise, at 81 % of range where the optimum gives 11 %.
+plateau of white noise, at 81 % of full scale where the optimum gives 11 % (commit e774242).
 """
 
 from __future__ import annotations
@@ -152,7 +155,7 @@ def fit_gp(
             random_state=seed,
         )
         # one BLAS thread: the same digits whatever the machine's cores (threaded BLAS moved the
-        # predictions of a 128-run fit by 2 % of their range, through the optimiser's path)
+        # predictions of a 128-run fit by 2 % of full scale, through the optimiser's path)
         with one_thread(), warnings.catch_warnings():  # an optimum on a bound: expected
             warnings.filterwarnings("ignore", category=ConvergenceWarning)
             models.append(gp.fit(u, target[:, j]))

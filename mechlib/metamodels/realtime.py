@@ -38,9 +38,8 @@ DISTILL_CHECK = 2**12
 """Teacher evaluations, on an independent Sobol' sample, its student is checked against."""
 DEADLINE_US = 100.0
 """The book's one real-time deadline [µs a pose]: the period of a 10 kHz control loop. The thesis
-names no rate; piezo-driven nano-positioners such as the HexFlex are commonly controlled at
-10–50 kHz, so a model slower than this cannot serve in such a loop. Every timing judgement of
-the book uses it."""
+names no rate; 10 kHz is our choice of a feedback rate for a nano-positioner, not a figure of the
+thesis or of the HexFlex's controller. Every timing judgement of the book uses it."""
 MAX_DEGREE = 8
 """Largest total degree :func:`distill` accepts (six forces: 3003 terms)."""
 

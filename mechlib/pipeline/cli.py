@@ -41,7 +41,8 @@ def _execute(args: argparse.Namespace) -> int:
 
 
 def _update(args: argparse.Namespace) -> int:
-    import numpy  # noqa: F401  (loads OpenBLAS, so its kernel can be read)
+    import numpy  # noqa: F401  (loads both OpenBLAS builds, as kernels.main does)
+    import scipy.linalg  # noqa: F401
 
     from mechlib.blasinfo import openblas_kernel
     from mechlib.pipeline.kernels import check_own_kernel

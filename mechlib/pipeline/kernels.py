@@ -24,10 +24,10 @@ from pathlib import Path
 
 from mechlib.blasinfo import openblas_kernel
 
-#: kernels every x86-64 machine of ours can run, in the order they are chosen
+#: kernels every x86-64 machine of ours can run, in the order they are chosen (the references'
+#: tolerances were measured against the first two; Nehalem, chosen only when the machine and the
+#: references hold those two, was not)
 CANDIDATES = ("Sandybridge", "Haswell", "Nehalem")
-#: the environment variable that overrides OpenBLAS's choice
-VARIABLE = "OPENBLAS_CORETYPE"
 
 
 def reference_kernels(references: Path) -> set[str]:
@@ -148,7 +148,8 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     if not args or args[0] not in ("own", "other"):
         print("usage: python -m mechlib.pipeline.kernels own | other [references folder] | "
-              "spread <references> <kernel>=<records folder> ...")  # fmt: skip
+              "spread <references> <kernel>=<records folder> ... | "
+              "forget <records> <executed> <kernel>")  # fmt: skip
         return 2
     import numpy  # noqa: F401  (loads OpenBLAS, so threadpoolctl finds it)
     import scipy.linalg  # noqa: F401

@@ -29,8 +29,8 @@ runs give two numbers for one quantity, the sentence names the set of runs.
 
 **Real time.** A model is real-time when one pose, one call at a time, takes at most
 {DEADLINE_US:g} µs: the period of a {1e3 / DEADLINE_US:g} kHz control loop. The thesis names no
-rate; piezo-driven nano-positioners such as the HexFlex are commonly controlled at 10–50 kHz.
-Every timing judgement of the book uses this one deadline.
+rate; this one is our choice of a feedback rate for a nano-positioner, not a figure of the thesis
+or of the HexFlex's controller. Every timing judgement of the book uses this one deadline.
 """
 
 
