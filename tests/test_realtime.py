@@ -132,8 +132,8 @@ def test_bad_indicator_input_is_refused_by_name() -> None:
 
 
 def test_every_timing_judgement_uses_the_books_one_deadline() -> None:
-    """The claims registry's control period and the meta-model page's default deadline and
-    speed goal are the one deadline the methods page states."""
+    """The claims registry's control period and the meta-model page's default deadline are the
+    one deadline the methods page states, and the page has no second speed goal."""
     import ast
     import json
     from pathlib import Path
@@ -152,4 +152,5 @@ def test_every_timing_judgement_uses_the_books_one_deadline() -> None:
         for node in ast.parse("".join(cell["source"])).body
         if isinstance(node, ast.Assign) and isinstance(node.targets[0], ast.Name)
     }
-    assert defaults["deadline_us"] == defaults["goal_us"] == rt.DEADLINE_US
+    assert defaults["deadline_us"] == rt.DEADLINE_US
+    assert not [name for name in defaults if name.endswith("_us") and name != "deadline_us"]

@@ -59,7 +59,7 @@ import numpy as np
 
 from mechlib.blas import one_thread
 from mechlib.memo import array_memo
-from mechlib.metamodels import gaussian_process, linear, quadratic
+from mechlib.metamodels import gaussian_process, legendre, linear, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 FAMILIES = ("linear", "quadratic", "cubic", "gp", "pce")
@@ -352,7 +352,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
         return _monomials(u, s["exponents"]) @ s["coef"]
     if surrogate.family == "gp":
         return gaussian_process.predict_scaled(s, u)
-    return legendre_products(u, s["exponents"]) @ s["coef"]
+    return legendre.evaluate(u, s["exponents"], s["coef"])
 
 
 def predict(surrogate: Surrogate, forces: object, *, extrapolate: bool = False) -> np.ndarray:
