@@ -78,6 +78,18 @@ def plackett_burman(n_runs: int) -> np.ndarray:
     Returns
     -------
     numpy.ndarray, shape (n_runs, n_runs - 1)
+
+    Examples
+    --------
+    A 12-run design has 11 balanced columns, orthogonal to each other (``XᵀX / 12 = I``):
+
+    >>> x = plackett_burman(12)
+    >>> x.shape, bool(np.allclose(orthogonality(x), np.eye(11))), is_balanced(x)
+    ((12, 11), True, True)
+    >>> plackett_burman(10)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_runs must be a multiple of 4, got 10
     """
     n_runs = check_int("n_runs", n_runs, low=4, high=48)
     if n_runs % 4:
@@ -112,6 +124,13 @@ def interaction_aliasing(design: object) -> float:
     ------
     ValueError
         For fewer than three factors, or a constant column.
+
+    Examples
+    --------
+    >>> round(interaction_aliasing(plackett_burman(12)), 6)  # a third of each interaction
+    0.333333
+    >>> round(interaction_aliasing(plackett_burman(8)), 6)  # 2^(7-4): main effects = interactions
+    1.0
     """
     arr = check_design(design, two_level=True)
     k = arr.shape[1]
@@ -281,6 +300,13 @@ def centered_l2_discrepancy_squared(design: object, n_levels: int | None = None)
     ------
     ValueError
         As :func:`uniform_design_points`.
+
+    Examples
+    --------
+    >>> square = [[-1.0, -1.0], [0.0, 1.0], [1.0, 0.0]]
+    >>> diagonal = [[-1.0, -1.0], [0.0, 0.0], [1.0, 1.0]]  # less uniform than the Latin square
+    >>> centered_l2_discrepancy_squared(square) < centered_l2_discrepancy_squared(diagonal)
+    True
     """
     return float(qmc.discrepancy(uniform_design_points(design, n_levels), method="CD"))
 
@@ -303,6 +329,12 @@ def random_balanced_designs(design: object, n_designs: int, seed: int) -> np.nda
     Returns
     -------
     numpy.ndarray, shape (n_designs, runs, factors)
+
+    Examples
+    --------
+    >>> designs = random_balanced_designs(plackett_burman(12), n_designs=5, seed=1)
+    >>> designs.shape, all(is_balanced(d) for d in designs)
+    ((5, 12, 11), True)
     """
     base = check_design(design)
     n_designs = check_int("n_designs", n_designs, low=1, high=100_000)
@@ -344,6 +376,16 @@ def random_design(n_runs: int, n_factors: int, seed: int) -> np.ndarray:
     ------
     ValueError, TypeError
         If an argument is not an integer in its range (named, with the range).
+
+    Examples
+    --------
+    >>> x = random_design(1000, 6, seed=0)
+    >>> bool(np.abs(x).max() <= LEVEL_LIMIT), bool(np.array_equal(random_design(10, 6, 0), x[:10]))
+    (True, True)
+    >>> random_design(0, 6, seed=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_runs must be in [1, 100000], got 0
     """
     n_runs = check_int("n_runs", n_runs, low=1, high=MAX_RANDOM_RUNS)
     n_factors = check_int("n_factors", n_factors, low=1)

@@ -44,6 +44,16 @@ def main_effects(design: object, responses: object) -> np.ndarray:
     ------
     ValueError
         If the design is not two-level, a column is not balanced, or the run counts differ.
+
+    Examples
+    --------
+    A main effect is twice the slope of a linear response in coded units:
+
+    >>> from mechlib.doe import plackett_burman
+    >>> x = plackett_burman(12)
+    >>> y = 10.0 + 3.0 * x[:, 0] - 0.5 * x[:, 4]
+    >>> bool(np.allclose(main_effects(x, y), [6.0, 0, 0, 0, -1.0, 0, 0, 0, 0, 0, 0]))
+    True
     """
     x = check_design(design, two_level=True)
     y = np.asarray(responses, dtype=float)
@@ -103,6 +113,24 @@ def lenth(effects: object, alpha: float = 0.05) -> Lenth:
     ------
     ValueError
         Fewer than three effects, non-finite effects, or ``alpha`` out of range.
+
+    Examples
+    --------
+    Six effects, one of them active: ν = median |c| = 1.5, s0 = 2.25; the five effects below
+    2.5 s0 have median 1, so PSE = 1.5 and ME = t(0.975; d = 2) · PSE.
+
+    >>> effects = [1.0, -1.0, 2.0, -2.0, 1.0, 30.0]
+    >>> res = lenth(effects)
+    >>> res.median_abs, res.s0, res.pse, res.d
+    (1.5, 2.25, 1.5, 2.0)
+    >>> round(res.me, 3), round(res.sme, 3)
+    (6.454, 16.154)
+    >>> res.active(effects).tolist()
+    [False, False, False, False, False, True]
+    >>> lenth(effects, alpha=0.7)
+    Traceback (most recent call last):
+    ...
+    ValueError: alpha must be in (0.0, 0.5], got 0.7
     """
     c = np.abs(np.asarray(effects, dtype=float).ravel())
     check_int("number of effects", c.size, low=MIN_EFFECTS)
@@ -149,6 +177,12 @@ def margins_from_scale(scale: float, m: int, alpha: float = 0.05) -> tuple[float
     -------
     tuple of float
         ``(ME, SME)``, the same formulas as :func:`lenth` with ``scale`` in place of the PSE.
+
+    Examples
+    --------
+    >>> res = lenth([1.0, -1.0, 2.0, -2.0, 1.0, 30.0])
+    >>> margins_from_scale(res.pse, res.m) == (res.me, res.sme)
+    True
     """
     scale = check_float("scale", scale, low=0.0)
     m = check_int("m", m, low=MIN_EFFECTS)
@@ -177,7 +211,13 @@ def half_normal_points(effects: object) -> tuple[np.ndarray, np.ndarray, np.ndar
 
 
 def pareto_order(effects: object) -> np.ndarray:
-    """Indices of effects sorted by decreasing magnitude (ties keep factor order)."""
+    """Indices of effects sorted by decreasing magnitude (ties keep factor order).
+
+    Examples
+    --------
+    >>> pareto_order([0.1, -3.0, 2.0]).tolist()
+    [1, 2, 0]
+    """
     c = np.abs(np.asarray(effects, dtype=float).ravel())
     return np.argsort(-c, kind="stable")
 
@@ -194,6 +234,11 @@ def dominant(effects: object, fraction: float = 0.01) -> np.ndarray:
     effects : array_like, shape (m,)
     fraction : float
         In (0, 1].
+
+    Examples
+    --------
+    >>> dominant([100.0, 0.5, 2.0, -50.0]).tolist()  # |effect| >= 1 % of the largest
+    [True, False, True, True]
     """
     c = np.abs(np.asarray(effects, dtype=float).ravel())
     fraction = check_float("fraction", fraction, low=0.0, high=1.0, low_open=True)

@@ -9,48 +9,20 @@
 
 from __future__ import annotations
 
-import ast
 import re
 
 from mechlib.paths import REPO_ROOT
+from mechlib.pipeline.housegraph import BUILD_WING, TOOLS, import_graph, modules
+from mechlib.pipeline.housegraph import inside as _in
 
-MECHLIB = REPO_ROOT / "mechlib"
-BUILD_WING = "mechlib.pipeline"
-#: beside both wings: ``make bench`` times the science wing on a build's records and executed
-#: notebooks, so it may read what the build wing writes (and import it)
-TOOLS = ("mechlib.bench",)
 #: left out of the circle check (none)
 UNCHECKED: set[str] = set()
 #: import circles accepted (none)
 TOLERATED_CIRCLES: list[set[str]] = []
 
-
-def _name(path) -> str:
-    parts = path.relative_to(REPO_ROOT).with_suffix("").parts
-    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
-
-
-MODULES = {_name(p): p for p in sorted(MECHLIB.rglob("*.py"))}
-
-
-def imports_of(module: str) -> set[str]:
-    """The mechlib modules that ``module`` imports anywhere in its source."""
-    found = set()
-    for node in ast.walk(ast.parse(MODULES[module].read_text())):
-        if isinstance(node, ast.Import):
-            found |= {a.name for a in node.names}
-        elif isinstance(node, ast.ImportFrom) and node.module:
-            for alias in node.names:
-                sub = f"{node.module}.{alias.name}"
-                found.add(sub if sub in MODULES else node.module)
-    return {m for m in found if m in MODULES and m != module}
-
-
-GRAPH = {m: imports_of(m) for m in MODULES}
-
-
-def _in(module: str, package: str) -> bool:
-    return module == package or module.startswith(package + ".")
+#: the graph ARCHITECTURE.md draws (``python -m mechlib.pipeline.housegraph``)
+MODULES = modules()
+GRAPH = import_graph(MODULES)
 
 
 def circles(graph: dict[str, set[str]]) -> list[set[str]]:

@@ -52,7 +52,15 @@ def leg_vector(values: dict[str, float], leg: int) -> np.ndarray:
 
 
 def check_leg(phi: object, name: str = "phi") -> np.ndarray:
-    """Validate a leg parameter vector: positive lengths, non-zero gain, finite numbers."""
+    """Validate a leg parameter vector: positive lengths, non-zero gain, finite numbers.
+
+    Examples
+    --------
+    >>> check_leg([1.2, -1.0, -0.5, 0.0, 1.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: phi.L must be > 0.0, got -1.0
+    """
     p = np.asarray(phi, dtype=float)
     if p.shape != (N_LEG_PARAMS,):
         raise ValueError(
@@ -100,6 +108,18 @@ def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
     ------
     ValueError
         Invalid parameters or mode, or a point outside the leg's reach (the point is named).
+
+    Examples
+    --------
+    >>> phi1 = [1.2, 1.0, -0.5, 0.0, 1.0, 0.0]  # l, L, Ax, Ay, k, γ (Eq 21)
+    >>> joint_reading([[5.0, 5.0]], phi1, mode=1)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: point #0 [5.0, 5.0] is out of the leg's reach, ... = [0.2, 2.2] m
+    >>> joint_reading([[0.0, 1.5]], phi1, mode=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: mode must be one of [1, -1], got 0
     """
     phi = check_leg(phi)
     mode = check_mode("mode", mode)
@@ -122,6 +142,22 @@ def forward(
     ------
     ValueError
         If the distal links cannot close the loop for some reading (the index is named).
+
+    Examples
+    --------
+    The readings of two points (inverse kinematics, both elbows outward) give the points back,
+    and each distal link closes the loop, ``|P − Bκ| = Lκ`` (Eq 23):
+
+    >>> phi1 = [1.2, 1.0, -0.5, 0.0, 1.0, 0.0]  # l, L, Ax, Ay, k, γ (Eq 21)
+    >>> phi2 = [1.2, 1.0, 0.5, 0.0, 1.0, 0.0]
+    >>> p = np.array([[0.0, 1.5], [0.3, 1.2]])
+    >>> psi1, psi2 = joint_reading(p, phi1, mode=1), joint_reading(p, phi2, mode=-1)
+    >>> bool(np.allclose(forward(psi1, psi2, phi1, phi2), p))
+    True
+    >>> bool(np.allclose(np.hypot(*(p - elbow(psi1, phi1)).T), 1.0))
+    True
+    >>> bool(np.allclose(np.hypot(*(p - elbow(psi2, phi2)).T), 1.0))
+    True
     """
     assembly = check_mode("assembly", assembly)
     phi1, phi2 = check_leg(phi1, "phi1"), check_leg(phi2, "phi2")
@@ -286,6 +322,24 @@ def miw_closed_form(l: float, L: float, a: float) -> dict[str, float]:
     ``c = ((l + L + y_p)² − a²) / (2 (l + L + y_p))`` and ``r = c − y_p``. Valid when
     ``L > a`` and ``l > L − a`` (the singular point exists) and the inner boundary
     ``sqrt(a² + c²) − |L − l|`` is not binding.
+
+    Examples
+    --------
+    The closed-form disc is the largest regular one: 1 % smaller it is regular, 1 % larger it
+    crosses the parallel singularity.
+
+    >>> miw = miw_closed_form(l=1.2, L=1.0, a=0.5)
+    >>> abs(miw["cy"] - miw["radius"] - miw["y_parallel"]) < 1e-12  # touches it on the axis
+    True
+    >>> phi1, phi2 = [1.2, 1.0, -0.5, 0.0, 1.0, 0.0], [1.2, 1.0, 0.5, 0.0, 1.0, 0.0]
+    >>> disc_is_regular((0.0, miw["cy"]), 0.99 * miw["radius"], phi1, phi2)
+    True
+    >>> disc_is_regular((0.0, miw["cy"]), 1.01 * miw["radius"], phi1, phi2)
+    False
+    >>> miw_closed_form(l=0.4, L=1.0, a=0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: closed form needs L > a and l > L - a, got l=0.4, L=1.0, a=0.5
     """
     l = check_float("l", l, low=0.0, low_open=True)
     L = check_float("L", L, low=0.0, low_open=True)

@@ -40,6 +40,18 @@ def space_filling_design(
         ``forces`` (n_runs, n_forces) [N]; ``cd2`` the squared centred L2 discrepancy of the
         unit-cube points (``qmc.discrepancy(method="CD")`` returns the square, as
         :func:`mechlib.doe.centered_l2_discrepancy_squared`); ``amplitude``.
+
+    Examples
+    --------
+    A Latin hypercube: each force falls once in each of the ``n_runs`` equal strata of ±2 N.
+
+    >>> import numpy as np
+    >>> forces = space_filling_design(8, amplitude=2.0, seed=0)["forces"]
+    >>> forces.shape, bool(np.abs(forces).max() <= 2.0)
+    ((8, 6), True)
+    >>> strata = np.floor((forces + 2.0) / (4.0 / 8)).astype(int)
+    >>> all(sorted(column) == list(range(8)) for column in strata.T.tolist())
+    True
     """
     n_runs = check_int("n_runs", n_runs, low=2, high=MAX_DESIGN_RUNS)
     amplitude = check_float("amplitude", amplitude, low=0.0, low_open=True)
@@ -78,6 +90,15 @@ def sobol_design(
     dict
         ``forces`` (n_runs, n_forces) [N]; ``cd2`` the squared centred L2 discrepancy of the
         unit-cube points; ``amplitude``.
+
+    Examples
+    --------
+    >>> sobol_design(8, amplitude=1.0, seed=0)["forces"].shape
+    (8, 6)
+    >>> sobol_design(12, amplitude=1.0, seed=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: n_runs must be a power of two for a Sobol' design, got 12
     """
     n_runs = check_int("n_runs", n_runs, low=2, high=MAX_DESIGN_RUNS)
     if n_runs & (n_runs - 1):

@@ -12,7 +12,42 @@ import sys
 
 
 def pose(model, forces):
-    """Pose [µm, µrad] (x, y, z, θx, θy, θz) of a model dict for six forces [N] in ±amplitude."""
+    """Pose [µm, µrad] (x, y, z, θx, θy, θz) of a model dict for six forces [N] in ±amplitude.
+
+    Parameters
+    ----------
+    model : dict
+        As :mod:`mechlib.metamodels.export` writes it: ``amplitude_n``, ``inputs`` (force names),
+        ``outputs`` (pose names), ``exponents`` (one degree per force, per term) and ``coef``
+        (per term, one coefficient per output) of the basis √(2k+1) P_k(force / amplitude).
+    forces : sequence of float
+        One force per input [N], each within ±amplitude.
+
+    Returns
+    -------
+    list of float
+        One value per output.
+
+    Raises
+    ------
+    ValueError
+        If a force lies outside ±amplitude (the force is named).
+
+    Examples
+    --------
+    Two forces of amplitude 2 N and the linear model x = 3 f1, y = 1 + 2 f2 (since
+    √3 P_1(f / 2) = √3 f / 2, the coefficients are 2√3 and 4/√3):
+
+    >>> model = {"amplitude_n": 2.0, "inputs": ["f1", "f2"], "outputs": ["x", "y"],
+    ...          "exponents": [[0, 0], [1, 0], [0, 1]],
+    ...          "coef": [[0.0, 1.0], [2 * math.sqrt(3), 0.0], [0.0, 4 / math.sqrt(3)]]}
+    >>> [round(v, 9) for v in pose(model, [1.0, -0.5])]
+    [3.0, 0.0]
+    >>> pose(model, [2.5, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: force f1 must be within ±2.0 N, got 2.5
+    """
     amp, exps = model["amplitude_n"], model["exponents"]
     for name, f in zip(model["inputs"], forces, strict=True):
         if not -amp <= f <= amp:  # the model was validated there only

@@ -56,6 +56,25 @@ def fit_linear(
     ------
     ValueError
         If there are fewer runs than coefficients.
+
+    Examples
+    --------
+    Noise-free responses of a known S (Eq 7) on three columns of a 12-run Plackett–Burman design
+    give S back; with an offset, the fit of Eq 6 gives β0 too:
+
+    >>> from mechlib.doe import plackett_burman
+    >>> x = plackett_burman(12)[:, :3]
+    >>> s_true = np.array([[2.0, 0.0, 1.0], [0.0, 3.0, 0.0], [0.5, 0.0, 4.0]])
+    >>> fit = fit_linear(x, x @ s_true.T)
+    >>> bool(np.allclose(fit["S"], s_true)), int(fit["rank"])
+    (True, 3)
+    >>> fit = fit_linear(x, 7.0 + x @ s_true.T, intercept=True)
+    >>> bool(np.allclose(fit["b0"], 7.0)), bool(np.allclose(fit["S"], s_true))
+    (True, True)
+    >>> fit_linear(x[:2], x[:2] @ s_true.T)
+    Traceback (most recent call last):
+    ...
+    ValueError: design needs at least 3 runs for this fit, got 2
     """
     x, y = design_and_responses(design, responses)
     a = np.c_[np.ones(len(x)), x] if intercept else x
@@ -84,6 +103,18 @@ def fit_penalized(
     -------
     dict
         ``S`` (outputs, factors) and ``alpha`` (outputs,) the selected penalties.
+
+    Raises
+    ------
+    ValueError
+        If ``method`` is not one of the two, or the arrays' shapes do not fit.
+
+    Examples
+    --------
+    >>> fit_penalized(np.eye(3), np.eye(3), method="elastic")
+    Traceback (most recent call last):
+    ...
+    ValueError: method must be one of ['ridge', 'lasso'], got 'elastic'
     """
     check_choice("method", method, ("ridge", "lasso"))
     x, y = design_and_responses(design, responses)
@@ -118,6 +149,14 @@ def predict_linear(s: object, design: object, b0: object | None = None) -> np.nd
     Returns
     -------
     numpy.ndarray, shape (runs, outputs)
+
+    Examples
+    --------
+    A unit force on the first factor gives the first column of S:
+
+    >>> s = [[2.0, 0.0, 1.0], [0.0, 3.0, 0.0], [0.5, 0.0, 4.0]]
+    >>> predict_linear(s, [[1.0, 0.0, 0.0]]).tolist()
+    [[2.0, 0.0, 0.5]]
     """
     s = check_matrix("S", s)
     x = check_matrix("design", design, shape=(None, s.shape[1]))
@@ -162,6 +201,20 @@ def inverse(s: object) -> dict[str, np.ndarray]:
     ------
     ValueError
         If ``s`` is not square.
+
+    Examples
+    --------
+    >>> s = np.array([[2.0, 0.0, 1.0], [0.0, 3.0, 0.0], [0.5, 0.0, 4.0]])
+    >>> inv = inverse(s)
+    >>> bool(inv["identity_error"] < EXACT_INVERSE_TOL)  # S⁻¹ S = I (Eq 9)
+    True
+    >>> poses = np.array([[1.0, -2.0, 0.5], [0.0, 3.0, -1.0]])
+    >>> round_trip_error(s, inv["S_inv"], poses) < ROUND_TRIP_TOL  # pose → force → pose
+    True
+    >>> inverse(np.ones((2, 3)))
+    Traceback (most recent call last):
+    ...
+    ValueError: S must be square to invert, got shape (2, 3)
     """
     s = check_matrix("S", s)
     if s.shape[0] != s.shape[1]:

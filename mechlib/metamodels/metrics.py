@@ -53,6 +53,18 @@ def full_scale_pct(error: object, truth: object) -> np.ndarray:
     ------
     ValueError
         When a column of ``truth`` is all zero (no full scale to divide by).
+
+    Examples
+    --------
+    The full scale of each column is its largest |value| (40 and 4 here), whatever the sign:
+
+    >>> truth = [[10.0, -2.0], [-40.0, 4.0]]
+    >>> full_scale_pct([[1.0, 0.5], [2.0, 0.0]], truth).tolist()
+    [[2.5, 12.5], [5.0, 0.0]]
+    >>> full_scale_pct([1.0], [[0.0], [0.0]])
+    Traceback (most recent call last):
+    ...
+    ValueError: full scale must be > 0 in every column, got [0.0]
     """
     t = np.atleast_2d(np.asarray(truth, dtype=float))
     scale = np.abs(t).max(axis=0)
@@ -74,6 +86,18 @@ def error_metrics(truth: object, predicted: object) -> dict[str, np.ndarray]:
         ``maxabs`` max |ψ − ψ̂| (Eq 10); ``rmse`` (Eq 11); ``max_rel_pct`` max over runs of
         100 |ψ − ψ̂| / |ψ| (pointwise, runs with ψ = 0 excluded); ``max_range_pct``
         100 · MAXABS / max |ψ|, MAXABS in :data:`FULL_SCALE` (:func:`full_scale_pct`).
+
+    Examples
+    --------
+    An error of 0.1 on a response that spans 40 is 0.25 % of full scale, but 1000 % of the
+    run where the response is 0.01: why the book quotes the full-scale measure.
+
+    >>> truth = np.array([[40.0], [0.01]])
+    >>> m = error_metrics(truth, truth + 0.1)
+    >>> round(float(m["max_range_pct"][0]), 6), round(float(m["max_rel_pct"][0]), 6)
+    (0.25, 1000.0)
+    >>> bool(np.allclose(m["max_range_pct"], full_scale_pct(m["maxabs"], truth)))
+    True
     """
     t = check_matrix("truth", truth)
     p = check_matrix("predicted", predicted, shape=t.shape)

@@ -1,0 +1,56 @@
+"""The examples in the docstrings of the functions a reader calls first run, and say what they show.
+
+Designs (Plackett–Burman, CD², space-filling), Lenth's method, the S_T meta-model (Eqs 6, 7, 9),
+the full-scale error, the 5R kinematics and the real-time model's plain-Python evaluator; the
+parameter checks of :mod:`mechlib.params` through the functions that call them (``params.py``
+itself is in the FE results store's fingerprint, so its docstrings are left as they are).
+The examples print integers, shapes, booleans and rounded floats, so that they hold on any BLAS
+kernel and under any NumPy print options.
+"""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+
+import numpy as np
+import pytest
+
+#: the modules whose docstrings hold the examples (none is in the FE fingerprint's closure)
+MODULES = (
+    "mechlib.doe",
+    "mechlib.screening",
+    "mechlib.metamodels.linear",
+    "mechlib.metamodels.metrics",
+    "mechlib.metamodels.designs",
+    "mechlib.metamodels.evaluator",
+    "mechlib.fivebar.kinematics",
+)
+#: issue 60: at least this many examples, imports not counted
+MIN_EXAMPLES = 30
+
+
+def _examples(module: str) -> list[doctest.Example]:
+    tests = doctest.DocTestFinder().find(importlib.import_module(module))
+    return [e for t in tests for e in t.examples if not e.source.startswith(("import ", "from "))]
+
+
+#: NumPy print options the examples must not depend on (the default, and another)
+PRINT_OPTIONS = ({}, {"precision": 3, "floatmode": "fixed", "legacy": "1.25"})
+
+
+@pytest.mark.parametrize("options", PRINT_OPTIONS, ids=("default", "other-print-options"))
+@pytest.mark.parametrize("module", MODULES)
+def test_the_examples_of_a_module_run(module: str, options: dict) -> None:
+    finder, runner = doctest.DocTestFinder(), doctest.DocTestRunner(verbose=False)
+    report: list[str] = []
+    with np.printoptions(**options):
+        for test in finder.find(importlib.import_module(module)):
+            runner.run(test, out=report.append)
+    result = runner.summarize(verbose=False)
+    assert result.attempted > 0, f"{module} has no examples"
+    assert result.failed == 0, "".join(report)
+
+
+def test_there_are_enough_examples() -> None:
+    assert sum(len(_examples(m)) for m in MODULES) >= MIN_EXAMPLES
