@@ -25,6 +25,7 @@ MODULES = (
     "mechlib.metamodels.designs",
     "mechlib.metamodels.evaluator",
     "mechlib.fivebar.kinematics",
+    "mechlib.metamodels.legendre",
 )
 #: issue 60: at least this many examples, imports not counted
 MIN_EXAMPLES = 30
