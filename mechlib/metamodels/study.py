@@ -8,8 +8,9 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from mechlib.metamodels.families import FAMILIES, Surrogate, fit_surrogate, n_terms
+from mechlib.metamodels.families import FAMILIES, Surrogate, fit_surrogate, n_terms, predict
 from mechlib.metamodels.inverse import invert
+from mechlib.metamodels.metrics import error_metrics, full_scale_pct
 from mechlib.metamodels.scoring import score
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
@@ -57,7 +58,10 @@ def learning_curve(
     dict
         ``sizes`` (m,); ``families`` list; ``max_range_pct`` and ``rmse`` (families, m,
         outputs) and ``worst_pct`` (families, m): NaN where a size is below the family's
-        :func:`n_terms`.
+        :func:`n_terms`; ``worst_run`` (families, m), the held-out run where the worst error
+        lies (-1 where not fitted), and ``second_pct`` (families, m), the largest error over
+        the other held-out runs (% of full scale, worst component): whether one run makes the
+        worst.
 
     Raises
     ------
@@ -71,18 +75,27 @@ def learning_curve(
     if n.size == 0 or np.any(np.diff(n) <= 0):
         raise ValueError(f"sizes must be increasing, got {n.tolist()}")
     shape = (len(fams), len(n), y.shape[1])
+    vy = check_matrix("val_poses", val_poses, shape=(None, y.shape[1]))
     out = {"max_range_pct": np.full(shape, np.nan), "rmse": np.full(shape, np.nan)}
+    worst_run = np.full(shape[:2], -1)
+    second = np.full(shape[:2], np.nan)
     for i, fam in enumerate(fams):
         for j, size in enumerate(n):
             if size < n_terms(fam, x.shape[1]):
                 continue
             fit = fit_surrogate(fam, x[:size], y[:size], amplitude=amplitude, seed=seed)
-            s = score(fit, val_forces, val_poses)
+            pred = predict(fit, val_forces)
+            s = error_metrics(vy, pred)
             out["max_range_pct"][i, j] = s["max_range_pct"]
             out["rmse"][i, j] = s["rmse"]
+            per_run = full_scale_pct(pred - vy, vy).max(axis=1)
+            order = np.argsort(per_run, kind="stable")
+            worst_run[i, j] = order[-1]
+            second[i, j] = per_run[order[-2]] if len(order) > 1 else np.nan
     with np.errstate(all="ignore"):
         worst = np.max(out["max_range_pct"], axis=2)
-    return {"sizes": n, "families": fams, "worst_pct": worst, **out}
+    return {"sizes": n, "families": fams, "worst_pct": worst, "worst_run": worst_run,
+            "second_pct": second, **out}  # fmt: skip
 
 
 def budget_ranges(

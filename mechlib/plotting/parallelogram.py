@@ -186,3 +186,50 @@ def deformed_shapes(
     fig.legend(unique.values(), unique.keys(), loc="lower center", ncol=2, fontsize=7,
                bbox_to_anchor=(0.5, -0.08))  # fmt: skip
     return fig
+
+
+def line_differences(
+    loads: np.ndarray, shares: np.ndarray, axes: Sequence[Axes] | None = None
+) -> Figure:
+    """Our FE's difference from the published 3-D FE at every row solved, against A_y: one line
+    per line of the sweep (its A_x and applied B), a lone row (a corner of the grid) as a grey
+    marker of its own, the largest difference of each component ringed.
+
+    Parameters
+    ----------
+    loads : ndarray (n, 3)
+        A_x, A_y and the couple applied of every row.
+    shares : ndarray (n, 3)
+        |our FE − published FE| per row and component, % of full scale.
+    axes : sequence of Axes, optional
+        Three panels.
+    """
+    loads, shares = np.asarray(loads, dtype=float), np.asarray(shares, dtype=float)
+    fig, panels = figure_and_panels(axes, (1, 3), (10.2, 3.4))
+    groups: dict[tuple[float, float], list[int]] = {}
+    for i, (a_x, _, b) in enumerate(loads):
+        groups.setdefault((float(a_x), float(b)), []).append(i)
+    colours = iter(("0.15", OURS_COLOR, ACTIVE_COLOR, PUBLISHED_COLOR, APPLIED_COLOR, "0.55"))
+    corners = iter(("*", "P", "X", "D", "v", "^", "<", ">"))
+    for (a_x, b), rows in sorted(groups.items()):
+        rows = sorted(rows, key=lambda i: loads[i, 1])
+        label = f"$A_x$ = {_minus(a_x)}, $B$ = {_minus(b)}"
+        if len(rows) == 1:
+            marker = next(corners, "o")
+            for c, ax in enumerate(panels):
+                ax.plot(loads[rows, 1], shares[rows, c], marker, color="0.3", ms=6,
+                        label=f"{label} (corner)" if c == 0 else None)  # fmt: skip
+            continue
+        colour = next(colours, "0.55")
+        for c, ax in enumerate(panels):
+            ax.plot(loads[rows, 1], shares[rows, c], "-o", color=colour, lw=1.1, ms=3,
+                    label=label if c == 0 else None)  # fmt: skip
+    for c, ax in enumerate(panels):
+        worst = int(np.argmax(shares[:, c]))
+        ax.plot(loads[worst, 1], shares[worst, c], "o", ms=12, mfc="none", color="k")
+        ax.set_title(f"{panel_label(c)} {COMPONENT_LABELS[c].split(' [')[0]}", fontsize=9)
+        ax.set_xlabel(LOAD_LABEL)
+        ax.set_ylabel("|our FE − published| [% of full scale]" if c == 0 else "")
+        readable_value_axis(ax.yaxis)
+    panels[0].legend(fontsize=6)
+    return fig

@@ -223,6 +223,14 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
             "Three panels of curves against A_y, each with square markers, a solid curve and a "
             "dashed curve.",
         ),
+        "pfe-14b": (
+            "The difference of our non-linear FE of the parallelogram flexure from the published "
+            "3-D FE sweep of Su and Survey at every row solved, in % of the published full scale "
+            "of u_x/L, u_y/L and φ, against A_y: a line per line of the sweep (A_x and the couple "
+            "applied), the grid's corners as lone grey markers; ringed, each component's largest.",
+            "Three panels of lines with dots against A_y, a few lone grey markers at the largest "
+            "A_y, and one black ring per panel.",
+        ),
         "pfe-20": (
             "Chapter 2's meta-model families on our FE of the parallelogram flexure: the largest "
             "error on held-out non-linear FE runs over the benchmark's load box (worst pose "
