@@ -139,8 +139,8 @@ def all_above(label: str, ref: Ref, limit: float, unit: str = "") -> Test:
         (ref,),
         lambda v: bool(np.all(_num(v) > limit)),
         lambda v: (
-            f"smallest {_q(float(_num(v).min()), unit)} of {np.size(v)} (each above "
-            f"{_q(limit, unit, 'g')})"
+            f"smallest {_q(float(_num(v).min()), unit)}, largest {_q(float(_num(v).max()), unit)} "
+            f"over {np.size(v)} values (each must exceed {_q(limit, unit, 'g')})"
         ),
         kind="all_above",
         limit=limit,
