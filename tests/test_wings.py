@@ -149,3 +149,27 @@ def test_the_fe_core_and_the_compliant_layouts_import_no_hexflex() -> None:
     assert {i for i in core if not _in(i, "mechlib.fe")} <= {"mechlib.params", "mechlib.blas"}
     layouts = {i for m, imports in GRAPH.items() if _in(m, "mechlib.compliant") for i in imports}
     assert not {i for i in layouts if _in(i, "mechlib.hexflex")}
+
+
+def test_the_recorder_imports_no_science() -> None:
+    # the notebooks' bookkeeping primitive sits below every mechanism: what it reaches, through
+    # any chain of imports, is the claims engine, the report rows and plain utilities; the
+    # registry of claims (which reads the science packages' constants) is passed in
+    allowed = {
+        "mechlib.reporting.records",
+        "mechlib.reporting.claims",
+        "mechlib.reporting.report",
+        "mechlib.reporting.categories",
+        "mechlib.params",
+        "mechlib.paths",
+        "mechlib.blasinfo",
+        "mechlib.reporting",
+        "mechlib",
+    }
+    reached, todo = set(), ["mechlib.reporting.records"]
+    while todo:
+        m = todo.pop()
+        if m not in reached:
+            reached.add(m)
+            todo += sorted(GRAPH.get(m, set()))
+    assert reached <= allowed, sorted(reached - allowed)

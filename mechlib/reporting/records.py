@@ -22,7 +22,7 @@ import numpy as np
 from mechlib.blasinfo import openblas_kernel
 from mechlib.params import check_float
 from mechlib.paths import records_dir
-from mechlib.reporting import claimlist, claims, report
+from mechlib.reporting import claims, report
 
 
 def _plain(value: Any) -> Any:
@@ -90,6 +90,11 @@ class Recorder:
         Notebook name without extension; the record file is ``<notebook>.json``.
     paste : callable, optional
         ``paste(name, value)`` glues a value for the prose; default :func:`paste` (myst-nb).
+    registry : callable, optional
+        ``registry(claim_id)`` gives the registered :class:`~mechlib.reporting.claims.ClaimSpec`
+        that :meth:`claim` judges (the book's registry: :func:`mechlib.reporting.claimlist.claim`).
+        Passed by the notebook, so that the recorder imports no science: the registry reads
+        constants of the science packages, the recorder sits below them.
     """
 
     notebook: str
@@ -99,6 +104,7 @@ class Recorder:
     paste: Callable[[str, Any], None] = field(default=paste, repr=False)
     timings: dict[str, float] = field(default_factory=dict)
     data: dict[str, tuple[str, str]] = field(default_factory=dict)
+    registry: Callable[[str], claims.ClaimSpec] | None = field(default=None, repr=False)
 
     def value(
         self,
@@ -243,7 +249,7 @@ class Recorder:
         return value
 
     def claim(self, claim_id: str) -> str:
-        """Judge the registered claim ``claim_id`` (:mod:`mechlib.reporting.claimlist`) from this
+        """Judge the registered claim ``claim_id`` (looked up in ``registry``) from this
         notebook's records: its verdict word is recorded under ``claims.<claim_id>`` and its
         report row added. Pages quote the word by id, never compose it.
 
@@ -257,9 +263,15 @@ class Recorder:
         KeyError
             An id the registry does not hold, or a value its rule reads that was not recorded.
         ValueError
-            A claim whose evidence another notebook records, or one judged twice.
+            A claim whose evidence another notebook records, one judged twice, or a recorder
+            made without a registry.
         """
-        spec = claimlist.claim(claim_id)
+        if self.registry is None:
+            raise ValueError(
+                f"claims: {self.notebook}'s Recorder was made without a claims registry; make it "
+                f"as Recorder(name, registry=claimlist.claim) to judge claim {claim_id!r}"
+            )
+        spec = self.registry(claim_id)
         if spec.page != self.notebook:
             raise ValueError(f"claim {claim_id!r} is judged on {spec.page}, not on {self.notebook}")
         verdict = claims.evaluate(spec, {**self.values, **self.timings})
