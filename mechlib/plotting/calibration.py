@@ -69,8 +69,9 @@ def parameter_errors(
     return fig
 
 
-#: the error maps' colour scales end at this percentile of their points: a few points near a
-#: singular corner, orders of magnitude above the rest, would otherwise leave one colour
+#: the error maps' colour scales end at this percentile of their points (and start at 100 minus
+#: it): a few points near a singular corner, orders of magnitude above the rest, would otherwise
+#: leave one colour
 MAP_PERCENTILE = 95.0
 
 
@@ -78,29 +79,30 @@ def error_maps(
     points: Mapping[str, np.ndarray], maps: Mapping[str, Mapping[str, np.ndarray]], axes=None
 ) -> Figure:
     """Position error [µm] over a workspace slice: one row per mechanism, one column per model
-    (before calibration, D&C, traditional); one colour scale per row for the calibrated maps.
-    Each scale ends at the :data:`MAP_PERCENTILE` th percentile of its points; points above it
-    take the top colour (the colour bar's arrow)."""
+    (before calibration, D&C, traditional). Each panel has its own colour scale, from the
+    (100 − :data:`MAP_PERCENTILE`)th to the :data:`MAP_PERCENTILE` th percentile of its points
+    (the colour bar's arrows): a shared scale left a panel whose errors all lie above another's
+    in one colour, and a scale from zero one whose errors vary little about a large mean; the
+    levels are compared on the colour bars."""
     mechs = list(points)
     cols = max(len(v) for v in maps.values())
     fig, panels = figure_and_panels(axes, (len(mechs), cols), (3.6 * cols, 3.2 * len(mechs)))
     panels = panels.reshape(len(mechs), cols)
     for row, m in zip(panels, mechs, strict=True):
         p = points[m]
-        after = np.concatenate([np.ravel(v) for k, v in maps[m].items() if k != "before"])
-        vmax = UM_PER_M * float(np.nanpercentile(after, MAP_PERCENTILE))
         for ax, (label, v) in zip(row, maps[m].items(), strict=False):
-            top = (
-                UM_PER_M * float(np.nanpercentile(v, MAP_PERCENTILE)) if label == "before" else vmax
+            low, top = (
+                UM_PER_M * float(np.nanpercentile(v, q))
+                for q in (100.0 - MAP_PERCENTILE, MAP_PERCENTILE)
             )
             sc = ax.scatter(
-                p[:, 0], p[:, 1], c=UM_PER_M * v, s=14, cmap="viridis", vmin=0, vmax=top
+                p[:, 0], p[:, 1], c=UM_PER_M * v, s=14, cmap="viridis", vmin=low, vmax=top
             )
-            fig.colorbar(sc, ax=ax, label="µm", extend="max")
+            fig.colorbar(sc, ax=ax, label="µm", extend="both")
             ax.set(title=f"{m}: {label}", xlabel="x [m]", ylabel="y [m]", aspect="equal")
     fig.suptitle(
-        "Position error over a workspace slice (RMS over the trials after calibration; colours "
-        f"end at each scale's {MAP_PERCENTILE:g}th percentile)"
+        "Position error over a workspace slice (RMS over the trials after calibration; each "
+        f"panel's colours span its {100 - MAP_PERCENTILE:g}th to {MAP_PERCENTILE:g}th percentile)"
     )
     return fig
 

@@ -252,9 +252,10 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
         ),
         "b5r-16": (
             "Position error over a regular slice of each workspace: before calibration and its "
-            "RMS over the trials after each strategy. Each colour scale ends at the "
-            f"{MAP_PERCENTILE:g}th percentile of its points (the colour bar's arrow): the few "
-            "points by a singular corner lie far above it.",
+            "RMS over the trials after each strategy. Each panel has its own colour scale, from "
+            f"the {100 - MAP_PERCENTILE:g}th to the {MAP_PERCENTILE:g}th percentile of its points "
+            "(the colour bar's arrows; the few points by a singular corner lie far above it): "
+            "compare the levels on the colour bars.",
             "Maps of the position error over each mechanism's workspace slice.",
         ),
         "b5r-18": (
