@@ -79,13 +79,24 @@ def hexflex_geometry(
     ax.set_ylim(-outer, 1.1 * g.tab_outer)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
+    # the flexures are a few tenths of a millimetre wide: one end of T1's beam, enlarged
+    end = g.tab_half_width + g.beam_length
+    box = (end - 3.0, end + 1.5, g.beam_radius - 1.5, g.beam_radius + g.radial_length + 1.0)
+    zoom = ax_t.inset_axes((0.08, 0.56, 0.84, 0.42))
+    draw_quads(zoom, planar.nodes, planar.quads, facecolors=colors[parts], edgecolors="0.3",
+               linewidths=0.2)  # fmt: skip
+    zoom.set(xlim=box[:2], ylim=box[2:], aspect="equal")
+    zoom.set_title("T1's beam and radial flexure, enlarged [mm]", fontsize=8)
+    zoom.tick_params(labelsize=7)
+    ax.indicate_inset_zoom(zoom, edgecolor="k")
     rows = [(k, f"{v:.4g}") for k, v in g.as_dict().items()]
     rows += [("ground radius", f"{g.ground_radius:.4g}"), ("stage gap", f"{g.stage_gap:.3g}")]
     ax_t.axis("off")
-    table = ax_t.table(
-        cellText=[[k, v] for k, v in rows], colLabels=["dimension", "mm"], loc="center"
+    ax_t.table(
+        cellText=[[k, v] for k, v in rows],
+        colLabels=["dimension", "mm"],
+        bbox=(0.08, 0.0, 0.84, 0.48),
     )
-    table.scale(1, 1.2)
     fig.suptitle("Fig 2 (reconstructed): our HexFlex planform and its dimensions")
     return fig
 

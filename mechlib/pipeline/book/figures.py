@@ -44,9 +44,11 @@ CAPTIONS: dict[str, dict[str, tuple[str, str]]] = {
     "hexflex_model": {
         "cell-24": (
             "Thesis Fig 2, reconstructed: the HexFlex planform of our model coloured by part, "
-            "with the grounded sectors, drawn at the identified dimensions.",
+            "with the grounded sectors, drawn at the identified dimensions; upper right, one end "
+            "of T1's beam and its radial flexure enlarged, with their quads.",
             "Top view of a triangular stage with three tabs and six L-shaped connection beams "
-            "running to three grounded sectors, each part in its own colour.",
+            "running to three grounded sectors, each part in its own colour; an enlarged inset "
+            "shows a thin horizontal beam meeting a thin vertical flexure.",
         ),
         "cell-26": (
             "Thesis Fig 5 for our model: (a) the all-quad mesh of one sixth of the planform, "
