@@ -100,8 +100,23 @@ def local_digest(source: str | bytes) -> str:
 def code_digest(
     source: str | bytes, package: str = "", digests: dict[str, str] | None = None
 ) -> str:
-    """SHA-256 (hex) of a module's normalised code, each mechlib import naming the
-    :func:`local_digest` of the module it reads (``digests``, by name; see :func:`normalise`)."""
+    """SHA-256 of a module's normalised code, each mechlib import naming the
+    :func:`local_digest` of the module it reads.
+
+    Parameters
+    ----------
+    source : str or bytes
+        The module's source.
+    package : str, optional
+        Its ``__package__`` (resolves relative imports).
+    digests : dict, optional
+        :func:`local_digest` of each mechlib module by dotted name (see :func:`normalise`).
+
+    Returns
+    -------
+    str
+        64 hex digits.
+    """
     return hashlib.sha256(dump(normalise(source, package, digests)).encode()).hexdigest()
 
 

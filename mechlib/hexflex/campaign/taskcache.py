@@ -60,9 +60,19 @@ def model_code_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
 
 
 def fingerprint_sources(modules: dict[str, tuple[bytes, str]]) -> str:
-    """The fingerprint (16 hex digits) of a closure of modules: ``{name: (source, package)}``,
-    ``package`` the module's ``__package__`` (see :func:`model_code_fingerprint`); the names
-    serve only to resolve the modules' imports of each other."""
+    """The fingerprint of a closure of modules (see :func:`model_code_fingerprint`).
+
+    Parameters
+    ----------
+    modules : dict
+        ``{name: (source, package)}``, ``package`` the module's ``__package__``; the names
+        serve only to resolve the modules' imports of each other, and are not digested.
+
+    Returns
+    -------
+    str
+        16 hex digits.
+    """
     local = {name: local_digest(src) for name, (src, _) in modules.items()}
     digests = sorted(
         code_digest(src, package, local)
