@@ -86,6 +86,7 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
         "mechlib.hexflex.campaign.spec",  # moved out of experiments: the specification's text
         "mechlib.progress",
         "mechlib.hexflex.campaign.sources",
+        "mechlib.hexflex.campaign.codedigest",
         "mechlib.hexflex.campaign.taskcache",
         "mechlib.paths",
     }
@@ -118,6 +119,7 @@ def test_every_module_of_a_layouts_task_is_in_its_cache_key() -> None:
         "mechlib.hexflex.campaign.spec",
         "mechlib.progress",
         "mechlib.hexflex.campaign.sources",
+        "mechlib.hexflex.campaign.codedigest",
         "mechlib.hexflex.campaign.taskcache",
         "mechlib.paths",
         "mechlib.parallelogram",  # the test's layout, given to the task as data

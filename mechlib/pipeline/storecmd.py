@@ -5,6 +5,7 @@ seed     write the store's tasks into a build's FE cache (refuses a stale, edite
 clean    refuse a work tree with uncommitted changes (``make store`` starts with it)
 pack     collect every FE task a build logged into the store, with its provenance (``make store``)
 check    recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
+rekey    re-key a format-3 store computed by the current code to format 4 (no run solved)
 =======  ==========================================================================================
 
 Each refusal is one line naming the thing and what to do, with exit code 2.
@@ -197,6 +198,19 @@ def _check(args: argparse.Namespace) -> int:
     return 1 if bad else 0
 
 
+def _rekey(args: argparse.Namespace) -> int:
+    from mechlib.hexflex.campaign.rekey import rekey_store
+
+    manifest, n = rekey_store(args.store, clean_commit())
+    old = manifest["rekeyed"]["from"]["fingerprints"]
+    print(
+        f"store: {n} entries ({manifest['runs']}) of {args.store} re-keyed from format 3 "
+        f"(byte fingerprints {old}, the current code's) to format {manifest['version']} "
+        f"(fingerprints {manifest['fingerprints']}); results unchanged, sha256 {manifest['sha256']}"
+    )
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     """The ``store`` command's arguments."""
     top = argparse.ArgumentParser(prog="python -m mechlib.pipeline store")
@@ -225,6 +239,9 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--seed", type=int, default=None, help="default: from the commit")
     check.add_argument("--workers", type=int, default=2, help="processes recomputing it")
     check.set_defaults(func=_check)
+    rekey = sub.add_parser("rekey", help="a format-3 store of the current code, re-keyed")
+    rekey.add_argument("--store", type=Path, required=True)
+    rekey.set_defaults(func=_rekey)
     return top
 
 

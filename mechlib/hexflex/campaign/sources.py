@@ -1,7 +1,8 @@
 """Which source files define an FE result: the modules a task runs and all they import.
 
-:mod:`mechlib.hexflex.campaign.experiments` keys its disk cache on these sources, so that a change
-to the mesher, the model or the solver can never return results computed by the old code.
+:mod:`mechlib.hexflex.campaign.experiments` keys its disk cache on these sources' code
+(:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`), so that a change to the
+mesher, the model or the solver can never return results computed by the old code.
 """
 
 from __future__ import annotations
@@ -9,6 +10,8 @@ from __future__ import annotations
 import ast
 import importlib.util
 from pathlib import Path
+
+from mechlib.hexflex.campaign.codedigest import internal_target, is_internal, is_typing_block
 
 #: The modules a task runs (the linear model, the lean model, the non-linear solver, the
 #: finite-rotation pose).
@@ -20,11 +23,29 @@ TASK_MODULES: tuple[str, ...] = (
 )
 
 
-def model_modules(task_modules: tuple[str, ...] = TASK_MODULES) -> tuple[str, ...]:
+def model_modules(
+    task_modules: tuple[str, ...] = TASK_MODULES, *, format3: bool = False
+) -> tuple[str, ...]:
     """The mechlib modules a task's results depend on: ``task_modules`` (default the HexFlex's
     ``TASK_MODULES``; a mechanism's spec names its own) and every mechlib module they import,
     directly or not, at module level or inside a function (read from the sources' import
-    statements), sorted."""
+    statements), with the packages that hold them (importing a module runs its packages'
+    ``__init__``), sorted. An import under ``if TYPE_CHECKING:`` never runs and is not followed.
+
+    Parameters
+    ----------
+    task_modules : tuple of str
+        The modules a task runs.
+    format3 : bool
+        The closure that cache format 3 digested instead: imports under ``if TYPE_CHECKING:``
+        followed, a package only where it is imported from (only
+        :func:`mechlib.hexflex.campaign.rekey.byte_fingerprint` asks for it).
+
+    Returns
+    -------
+    tuple of str
+        The modules' dotted names.
+    """
     seen: set[str] = set()
     todo = list(task_modules)
     while todo:
@@ -32,16 +53,33 @@ def model_modules(task_modules: tuple[str, ...] = TASK_MODULES) -> tuple[str, ..
         if name in seen:
             continue
         seen.add(name)
-        origin = importlib.util.find_spec(name).origin
-        for node in ast.walk(ast.parse(Path(origin).read_text())):
-            if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-                targets = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
-            elif isinstance(node, ast.Import):
+        spec = importlib.util.find_spec(name)
+        if not format3 and spec.parent and spec.parent != name:
+            todo.append(spec.parent)
+        for node in _imports(ast.parse(Path(spec.origin).read_text()), format3):
+            if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
+            elif (base := internal_target(node, spec.parent)) is not None:
+                targets = [base] + [f"{base}.{a.name}" for a in node.names]
             else:
                 continue
-            todo.extend(t for t in targets if t.startswith("mechlib") and _is_module(t))
+            todo.extend(t for t in targets if is_internal(t) and _is_module(t))
     return tuple(sorted(seen))
+
+
+def _imports(tree: ast.Module, typing_imports: bool) -> list[ast.Import | ast.ImportFrom]:
+    """The import statements of ``tree``, anywhere in it; those under ``if TYPE_CHECKING:``
+    only with ``typing_imports``."""
+    found, todo = [], [tree]
+    while todo:
+        node = todo.pop()
+        if isinstance(node, ast.Import | ast.ImportFrom):
+            found.append(node)
+        children = list(ast.iter_child_nodes(node))
+        if is_typing_block(node) and not typing_imports:
+            children = [c for c in children if c in node.orelse]
+        todo.extend(children)
+    return found
 
 
 def _is_module(name: str) -> bool:

@@ -17,13 +17,14 @@ specification) or whose forces lie outside the model's force bound, and a store 
 other FE code than the current one. Writing is atomic: a new store replaces the old one whole,
 or not at all.
 
-Two mechanisms share a store (format 3): the HexFlex's tasks (:class:`ModelSpec`, six actuator
-forces) and those of a compliant layout (:class:`~mechlib.compliant.spec.MechanismSpec`, its own
-load ports and bounds). Each family's keys carry the fingerprint of its own code, so the
-manifest keeps one per family (:data:`FAMILIES`); the HexFlex's is also ``fingerprint``, as in
-format 2, which is still read. A store whose HexFlex fingerprint is not the current code's is
-refused; its entries of a family whose code changed since are not seeded (the build computes
-them again).
+Two mechanisms share a store: the HexFlex's tasks (:class:`ModelSpec`, six actuator forces) and
+those of a compliant layout (:class:`~mechlib.compliant.spec.MechanismSpec`, its own load ports
+and bounds). Each family's keys carry the fingerprint of its own code, so the manifest keeps one
+per family (:data:`FAMILIES`); the HexFlex's is also ``fingerprint``. A store whose HexFlex
+fingerprint is not the current code's is refused; its entries of a family whose code changed
+since are not seeded (the build computes them again). Format 4 (cache format 4) keys on the
+code's normalised syntax trees, so a docstring or a comment edited keeps the store; a store of
+an older format is refused by its version.
 """
 
 from __future__ import annotations
@@ -44,10 +45,11 @@ from mechlib.hexflex.campaign.experiments import KINDS, RESULT_COLUMNS
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 
-#: Format of ``manifest.json`` and ``results.npz`` this code writes; it reads this one and
-#: :data:`READS`.
-STORE_VERSION = 3
-READS = (2, 3)
+#: Format of ``manifest.json`` and ``results.npz`` this code writes and reads (:data:`READS`);
+#: 4: keys of cache format 4 (the fingerprint digests the FE code's syntax trees), a format-3
+#: store is re-keyed to it by :func:`mechlib.hexflex.campaign.rekey.rekey_store`
+STORE_VERSION = 4
+READS = (4,)
 #: the families of tasks a store holds: the HexFlex's, a compliant layout's
 FAMILIES: tuple[str, ...] = ("hexflex", "mechanism")
 
@@ -66,7 +68,7 @@ def fingerprints() -> dict[str, str]:
 MANIFEST = "manifest.json"
 RESULTS = "results.npz"
 #: manifest fields every store has (the build wing may add more: commit, processor, timings)
-REQUIRED = ("version", "fingerprint", "sha256", "entries", "runs")
+REQUIRED = ("version", "fingerprint", "fingerprints", "sha256", "entries", "runs")
 #: command that regenerates the store, named by every refusal of a stale store
 REGENERATE = "make store"
 
@@ -185,8 +187,8 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
     return folder
 
 
-def read_manifest(folder: Path) -> dict:
-    """The manifest of the store ``folder``, checked for version and fields.
+def read_manifest(folder: Path, reads: tuple[int, ...] = READS) -> dict:
+    """The manifest of the store ``folder``, checked for version (one of ``reads``) and fields.
 
     Raises
     ------
@@ -202,12 +204,11 @@ def read_manifest(folder: Path) -> dict:
         raise StoreError(f"the store manifest {path} is not valid JSON ({err})") from err
     if not isinstance(manifest, dict) or any(f not in manifest for f in REQUIRED):
         raise StoreError(f"the store manifest {path} lacks fields: needs {', '.join(REQUIRED)}")
-    if manifest["version"] not in READS:
+    if manifest["version"] not in reads:
         raise StoreError(
             f"the store {folder} has format version {manifest['version']!r}; this code reads "
-            f"versions {', '.join(map(str, READS))}: regenerate it with `{REGENERATE}`"
+            f"versions {', '.join(map(str, reads))}: regenerate it with `{REGENERATE}`"
         )
-    manifest.setdefault("fingerprints", {"hexflex": manifest["fingerprint"]})
     return manifest
 
 
@@ -223,6 +224,30 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     """
     folder = Path(folder)
     manifest = read_manifest(folder)
+    entries = load_entries(folder, manifest)
+    for e in entries:
+        fingerprint = manifest["fingerprints"].get(family(e.spec), "")
+        if family(e.spec) == "hexflex" or fingerprint == fingerprints()[family(e.spec)]:
+            _check_entry(e)  # a layout's entry of older code: not seeded, its bounds unread
+        expected = task_key(e.spec, e.kind, e.forces, e.steps, fingerprint)
+        if expected != e.key:
+            raise StoreError(
+                f"store entry {e.key} does not match its own inputs (specification, forces or "
+                f"steps edited; their digest is {expected}): regenerate with `{REGENERATE}`"
+            )
+    return manifest, entries
+
+
+def load_entries(folder: Path, manifest: dict) -> list[Entry]:
+    """The entries of the store ``folder`` whose ``manifest`` was read, its checksum verified,
+    their keys not (:func:`read_store` checks them).
+
+    Raises
+    ------
+    StoreError
+        For a ``results.npz`` whose checksum differs from the manifest's.
+    """
+    folder = Path(folder)
     if _sha256(folder / RESULTS) != manifest["sha256"]:
         raise StoreError(
             f"{folder / RESULTS} does not match the checksum of its manifest (edited or "
@@ -236,22 +261,11 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     for i, key in enumerate(a["keys"].tolist()):
         kind = KINDS[int(a["kind"][i])]
         forces = a["forces"][starts[i] : starts[i + 1], : int(widths[i])]
-        width = RESULT_COLUMNS[kind]
-        e = Entry(
+        entries.append(Entry(
             key, str(a["specs"][a["spec_index"][i]]), kind, int(a["steps"][i]), forces,
-            a["results"][starts[i] : starts[i + 1], :width],
-        )  # fmt: skip
-        fingerprint = manifest["fingerprints"].get(family(e.spec), "")
-        if family(e.spec) == "hexflex" or fingerprint == fingerprints()[family(e.spec)]:
-            _check_entry(e)  # a layout's entry of older code: not seeded, its bounds unread
-        expected = task_key(e.spec, e.kind, e.forces, e.steps, fingerprint)
-        if expected != key:
-            raise StoreError(
-                f"store entry {key} does not match its own inputs (specification, forces or "
-                f"steps edited; their digest is {expected}): regenerate with `{REGENERATE}`"
-            )
-        entries.append(e)
-    return manifest, entries
+            a["results"][starts[i] : starts[i + 1], : RESULT_COLUMNS[kind]],
+        ))  # fmt: skip
+    return entries
 
 
 @lru_cache(maxsize=64)

@@ -12,40 +12,78 @@ from __future__ import annotations
 import ast
 import concurrent.futures as cf
 import hashlib
+import importlib.util
 import json
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex.campaign.codedigest import code_digest, local_digest
 from mechlib.hexflex.campaign.sources import TASK_MODULES, model_modules
 from mechlib.paths import fe_log_path
 
-#: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics
-CACHE_VERSION = 3
+#: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics;
+#: 4: the fingerprint digests the FE code's normalised syntax trees, not its bytes and names
+CACHE_VERSION = 4
 
 
 @lru_cache(maxsize=4)
 def model_code_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
-    """Digest of the sources that define a task's results (:func:`model_modules`: geometry,
+    """Digest of the code that defines a task's results (:func:`model_modules`: geometry,
     mesh, FE model, solver, pose fit …) of the HexFlex's tasks, or of those a mechanism's
     spec names (its ``TASK_MODULES``).
 
     Part of every cache key, so that a change to the mesher or the solver can never return
-    results computed by the old code. A package whose ``__init__.py`` holds only its docstring
-    (what the package is for) defines nothing and is left out, so that rewording it keeps the
-    cache and the results store.
-    """
-    import importlib.util
+    results computed by the old code. It digests each module's syntax tree without docstrings,
+    annotations, typing-only imports and module paths
+    (:func:`~mechlib.hexflex.campaign.codedigest.code_digest`), and combines the modules'
+    digests sorted, not their names: rewording a docstring or a comment, or moving or renaming a
+    module (its importers updated), keeps the cache and the results store; changing a line of
+    code does not. A package whose ``__init__.py`` holds only its docstring (what the package is
+    for) defines nothing and is left out.
 
-    h = hashlib.sha256()
-    for name in model_modules(task_modules):
-        source = Path(importlib.util.find_spec(name).origin).read_bytes()
-        if not _defines_code(source):
-            continue
-        h.update(name.encode())
-        h.update(source)
-    return h.hexdigest()[:16]
+    Parameters
+    ----------
+    task_modules : tuple of str
+        The modules a task runs (their closure is digested).
+
+    Returns
+    -------
+    str
+        16 hex digits.
+    """
+    sources = {name: _source(name) for name in model_modules(task_modules)}
+    return fingerprint_sources(
+        {name: (src, importlib.util.find_spec(name).parent) for name, src in sources.items()}
+    )
+
+
+def fingerprint_sources(modules: dict[str, tuple[bytes, str]]) -> str:
+    """The fingerprint of a closure of modules (see :func:`model_code_fingerprint`).
+
+    Parameters
+    ----------
+    modules : dict
+        ``{name: (source, package)}``, ``package`` the module's ``__package__``; the names
+        serve only to resolve the modules' imports of each other, and are not digested.
+
+    Returns
+    -------
+    str
+        16 hex digits.
+    """
+    local = {name: local_digest(src) for name, (src, _) in modules.items()}
+    digests = sorted(
+        code_digest(src, package, local)
+        for name, (src, package) in modules.items()
+        if _defines_code(src)
+    )
+    return hashlib.sha256("\n".join(digests).encode()).hexdigest()[:16]
+
+
+def _source(name: str) -> bytes:
+    return Path(importlib.util.find_spec(name).origin).read_bytes()
 
 
 def _defines_code(source: bytes) -> bool:
@@ -59,12 +97,21 @@ def _defines_code(source: bytes) -> bool:
     )
 
 
-def task_key(spec: str, kind: str, forces: np.ndarray, steps: int, fingerprint: str) -> str:
-    """The cache key of a task: a digest of the cache format, the code ``fingerprint``
-    (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key` text), the
-    ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes."""
+def task_key(
+    spec: str,
+    kind: str,
+    forces: np.ndarray,
+    steps: int,
+    fingerprint: str,
+    version: int = CACHE_VERSION,
+) -> str:
+    """The cache key of a task: a digest of the cache format ``version``, the code
+    ``fingerprint`` (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key`
+    text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes.
+    Only :mod:`mechlib.hexflex.campaign.rekey` passes another ``version`` (to check keys of
+    format 3)."""
     h = hashlib.sha256()
-    h.update(f"{CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
+    h.update(f"{version}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
     return h.hexdigest()[:32]
 

@@ -18,7 +18,8 @@ from mechlib.hexflex.campaign.executors import InProcessExecutor
 from mechlib.hexflex.campaign.experiments import ModelSpec, check_forces_design, solver_for
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
 
-_VERSION = 1
+#: 2: the code fingerprint digests the FE code's syntax trees (cache format 4)
+_VERSION = 2
 
 
 def _state(spec: ModelSpec, forces: np.ndarray) -> np.ndarray:
