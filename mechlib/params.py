@@ -38,6 +38,23 @@ def check_int(name: str, value: object, *, low: int | None = None, high: int | N
         If ``value`` is not an integer.
     ValueError
         If ``value`` is outside ``[low, high]``.
+
+    Examples
+    --------
+    >>> check_int("runs", 30, low=1, high=100)
+    30
+    >>> check_int("runs", 0, low=1, high=100)
+    Traceback (most recent call last):
+    ...
+    ValueError: runs must be in [1, 100], got 0
+    >>> check_int("runs", 12.0, low=1)
+    Traceback (most recent call last):
+    ...
+    TypeError: runs must be an integer >= 1, got 12.0
+    >>> check_int("runs", True)
+    Traceback (most recent call last):
+    ...
+    TypeError: runs must be an integer, got True
     """
     if isinstance(value, bool) or not isinstance(value, Integral):
         raise TypeError(f"{name} must be an integer{_range_text(low, high)}, got {value!r}")
@@ -77,6 +94,19 @@ def check_float(
         If ``value`` is not a real number.
     ValueError
         If ``value`` is not finite or is out of range.
+
+    Examples
+    --------
+    >>> check_float("budget_pct", 1, low=0.0, high=100.0, low_open=True)
+    1.0
+    >>> check_float("budget_pct", 0.0, low=0.0, high=100.0, low_open=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: budget_pct must be in (0.0, 100.0], got 0.0
+    >>> check_float("sigma", float("nan"), low=0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: sigma must be finite, got nan
     """
     if isinstance(value, bool) or not isinstance(value, Real):
         raise TypeError(
@@ -124,6 +154,15 @@ def check_choice(name: str, value: object, allowed: Iterable[object]) -> object:
     ------
     ValueError
         If ``value`` is not in ``allowed``.
+
+    Examples
+    --------
+    >>> check_choice("family", "gp", ["linear", "gp"])
+    'gp'
+    >>> check_choice("family", "spline", ["linear", "gp"])
+    Traceback (most recent call last):
+    ...
+    ValueError: family must be one of ['linear', 'gp'], got 'spline'
     """
     allowed = tuple(allowed)
     if value not in allowed:

@@ -1,9 +1,9 @@
 """The examples in the docstrings of the functions a reader calls first run, and say what they show.
 
 Designs (Plackett–Burman, CD², space-filling), Lenth's method, the S_T meta-model (Eqs 6, 7, 9),
-the full-scale error, the 5R kinematics and the real-time model's plain-Python evaluator; the
-parameter checks of :mod:`mechlib.params` through the functions that call them (``params.py``
-itself is in the FE results store's fingerprint, so its docstrings are left as they are).
+the full-scale error, the 5R kinematics, the real-time model's plain-Python evaluator and its
+fast Legendre evaluation, and the parameter checks of :mod:`mechlib.params` (in the FE results
+store's fingerprint, which digests code, not docstrings: its examples leave the store's keys).
 The examples print integers, shapes, booleans and rounded floats, so that they hold on any BLAS
 kernel and under any NumPy print options.
 """
@@ -26,6 +26,7 @@ MODULES = (
     "mechlib.metamodels.evaluator",
     "mechlib.fivebar.kinematics",
     "mechlib.metamodels.legendre",
+    "mechlib.params",
 )
 #: issue 60: at least this many examples, imports not counted
 MIN_EXAMPLES = 30
