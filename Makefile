@@ -279,7 +279,7 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
 
 clean:
-	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md book/intro.md
+	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md book/report_beyond.md book/intro.md
 
 # --- PDF of the book --------------------------------------------------------------------------
 # Headless Chromium prints the single-page HTML build after MathJax ran (from the build's own

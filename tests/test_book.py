@@ -171,10 +171,11 @@ def test_prepare_notebook_applies_every_rule(tmp_path: Path) -> None:
     assert [c["metadata"].get("tags") for c in out["cells"]] == [
         None,
         ["parameters"],
+        None,  # the parameters as printed (printparams)
         ["hide-input"],
         ["remove-cell"],
     ]
-    assert out["cells"][3]["outputs"][0]["text"] == "record written to r.json\n"
+    assert out["cells"][4]["outputs"][0]["text"] == "record written to r.json\n"
     assert secs[0].label == "my-nb-s1" and out["cells"][0]["source"].startswith("(my-nb-s1)=")
     assert nb["cells"][2]["metadata"]["tags"] == []  # the input is not modified
 
@@ -212,6 +213,49 @@ def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
     assert order == ["Table 1", "Table 3", "Table 5", "Fig 2", "Fig 6", "Eq 8"]
     assert "x: T1D1 (-1.0 N)" in table  # claim evidence is shown as written
     assert "{category}`diverges`: non-linear" in table  # the category (marked), then the cause
+
+
+def test_printed_numbers_floor_p_values_round_times_and_drop_a_repeated_maximum() -> None:
+    text = "Wilcoxon p = 2.1e-126 (met); p = 5.4e-09; 1.6001 µs against 2.2942e+05 µs, 110.3 µs"
+    assert reportpage.print_numbers(text) == (
+        "Wilcoxon p < 1e-10 (met); p = 5.4e-09; 1.6 µs against 230,000 µs, 110 µs"
+    )
+    assert reportpage.print_numbers("72 values (12 × 6) from -1 to 1, max |x| = 1") == (
+        "72 values (12 × 6) from -1 to 1"
+    )
+
+
+def test_rows_beyond_the_thesis_go_to_the_appendix_grouped_by_page(tmp_path: Path) -> None:
+    beyond = [
+        report.computed_row("Beyond the thesis: lean mesh", "largest difference [%]", [0.03]),
+        report.compare_row(
+            "Table 3", "ME of x, m = 7", [110.73], [110.86], rtol=0.01, source="ours"
+        ),
+    ]
+    (tmp_path / "a.json").write_text(json.dumps({"notebook": "a", "report": ROWS[:2]}))
+    (tmp_path / "b.json").write_text(json.dumps({"notebook": "b", "report": beyond}))
+    chapters = [reportpage.Chapter(2, "Chapter 2 — x", ("a", "b"))]
+    link = bookbuild.Linker({"b": [artefacts.Section("b-s1", "Page B", ())]})
+    rows = bookbuild.report_rows(tmp_path, chapters)
+    main = bookbuild.report_markdown(rows, chapters, link)
+    appendix = bookbuild.appendix_markdown(rows, chapters, link)
+    assert "largest difference" not in main and "2 more rows of this chapter" in main
+    assert "## Page B" in appendix and "{doc}`lean mesh </chapters/b>`" in appendix
+    assert "110.9 (published 110.73; difference" in appendix and "computed" in appendix
+    assert "err" not in appendix.split("## Page B")[1]
+
+
+def test_the_printed_parameters_are_a_compact_table_of_values_and_units() -> None:
+    from mechlib.pipeline.book import printparams
+
+    cell = {"id": "p", "source": "# fmt: off\nt = 0.5  # mm, thickness\nseed = 1  # seed\nw = 2\n"}
+    printed = printparams.print_cell(cell)
+    assert printed["source"].startswith(":::{container} print-only params-print")
+    assert (
+        "* - `t`\n  - `0.5` mm\n  - `seed`\n  - `1`\n* - `w`\n  - `2`\n  - \n  - "
+        in (printed["source"])
+    )
+    assert printparams.print_cell({"source": "# no parameters\n"}) is None
 
 
 # --- toc and report assembly ---------------------------------------------------------------------
@@ -302,12 +346,13 @@ def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_dire
         ]
     }  # fmt: skip
     out, _ = cells.prepare_notebook(nb, "p", Path("/nowhere"))
-    assert len(out["cells"]) == 2
+    assert len(out["cells"]) == 3
     params = out["cells"][0]["source"]
     assert "fmt" not in params and "seed = 1  # the seed" in params
     assert "geometry = {'a': 1}  # passed by the build; from the model" in params
     assert "extra = 2  # passed by the build" in params
-    assert out["cells"][1]["source"] == "x = [1,  2]\nx\n"
+    assert "`{'a': 1}`" in out["cells"][1]["source"]  # printed with the value it ran with
+    assert out["cells"][2]["source"] == "x = [1,  2]\nx\n"
 
 
 def test_a_notebook_still_executing_is_no_chapter(tmp_path: Path) -> None:

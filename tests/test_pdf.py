@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from mechlib.pipeline import pdf, pdfcheck
+from mechlib.pipeline import pdf, pdfcheck, pdfpages
 
 PAGE = """<html><head>{head}</head><body>
 <nav><img src="logo.png"><h1>Navigation</h1></nav>
@@ -213,6 +213,20 @@ def test_file_links_are_made_relative_in_place(tmp_path: Path) -> None:
     assert len(out) == len(body) and b"/URI (data.zip) " in out and b"file:" not in out
     assert out.index(b"endobj") == body.index(b"endobj")  # offsets kept: the xref holds
     assert pdf.relative_file_links(folder / "b.pdf") == 0
+    live = f"{tmp_path.resolve().as_uri()}/html/generated/explorer.html".encode()
+    (folder / "c.pdf").write_bytes(body.replace(uri, live))
+    assert pdf.relative_file_links(folder / "c.pdf") == 1
+    assert b"/URI (../html/generated/explorer.html) " in (folder / "c.pdf").read_bytes()
+
+
+def test_a_live_page_link_opens_the_page_of_the_html_build(tmp_path: Path) -> None:
+    (tmp_path / "html").mkdir()
+    single = tmp_path / "singlehtml"
+    single.mkdir()
+    write_page(single / "index.html", '<a class="live-page" data-page="g/e.html" href="#">g</a>')
+    assert pdf.live_root(single) == tmp_path / "html"
+    text, _ = pdf.print_copy(single / "index.html", tmp_path, pdf.live_root(single))
+    assert f'href="{(tmp_path / "html" / "g" / "e.html").resolve().as_uri()}"' in text
 
 
 def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Path) -> None:
@@ -291,6 +305,40 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
     assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
     assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
     assert problems[4].startswith("text at 5.00 pt on page 1 ('small print'), allowed ≥ 7.0")
-    assert problems[5].startswith("page 2 begins with a caption parted from its figure")
-    assert len(problems) == 6
+    assert problems[5].startswith("page 2 is near-blank: its text spans")  # one caption line
+    assert problems[6].startswith("page 2 begins with a caption parted from its figure")
+    assert len(problems) == 7
     assert pdf.main(["check", "--pdf", str(tmp_path / "bad.pdf"), "--html", str(bad)]) == 1
+
+
+def test_near_blank_pages_fail_unless_they_hold_a_figure() -> None:
+    full = [(60.0 + 14 * k, f"line {k} of a full page") for k in range(40)]
+    pages = pdfpages.parse_layout(
+        layout(full, [(60.0, "Provenance of the page"), (74.0, "commit abc")], [(60.0, "x")])
+    )
+    assert [n for n, _ in pdfpages.sparse_pages(pages, image_pages={3})] == [2]
+    listing = "page num type\n---\n   3  0 image 64 48\n   3  1 smask 64 48\n"
+    assert pdfpages.image_pages(listing) == {3}
+
+
+def test_a_word_broken_inside_a_narrow_column_is_found() -> None:
+    words = pdfpages.book_words("a better numerical efficiency; mechlib.doe.centered_l2, x-ray")
+    pages = pdfpages.parse_layout(
+        layout(
+            [(60.0, "better numeric"), (72.0, "al efficienc"), (84.0, "y (conditioning)")],
+            [(60.0, "mechlib.doe."), (72.0, "centered_l2"), (84.0, "a better"), (96.0, "x")],
+        )
+    )
+    assert pdfpages.broken_words(pages, words) == [(1, "numeric|al"), (1, "efficienc|y")]
+
+
+def test_a_live_page_needs_a_working_link_relative_to_the_pdf(tmp_path: Path) -> None:
+    html_page = '<p class="print-only">Live: <a class="live-page" data-page="g/e.html" href="#">'
+    live = pdfpages.live_pages(html_page)
+    assert live == ["g/e.html"]
+    (tmp_path / "html" / "g").mkdir(parents=True)
+    (tmp_path / "pdf").mkdir()
+    assert pdfpages.unlinked_live_pages(live, ["../html/g/e.html"], tmp_path / "pdf")
+    (tmp_path / "html" / "g" / "e.html").write_text("<p>live</p>")
+    assert pdfpages.unlinked_live_pages(live, ["../html/g/e.html"], tmp_path / "pdf") == []
+    assert pdfpages.unlinked_live_pages(live, [], tmp_path / "pdf")

@@ -45,6 +45,8 @@ VIRTUAL_TIME_MS = 30000  # virtual time for the page's scripts (MathJax) before 
 PRINT_TIMEOUT_S = 300  # wall-clock limit of one page's print
 LINK = re.compile(r'(<a\s[^>]*?href=")([^"]*)(")')
 CODE = re.compile(r'(<span class="pre">)([^<]*)(</span>)')  # the words of inline code
+# a link of the printed page to a live page of the HTML build (explorerpage.LIVE_PAGE_CLASS)
+LIVE = re.compile(r'(<a class="live-page" data-page="([^"]*)" href=")#(")')
 FRAME = re.compile(r'<table [^>]*class="dataframe[^"]*"[^>]*>.*?</table>', re.DOTALL)
 CELL = re.compile(r"<t([hd])\b([^>]*)>(.*?)</t[hd]>", re.DOTALL)
 # a data frame wider than this many characters of its font (8 pt: a portrait page's width) is
@@ -112,7 +114,15 @@ def mark_wide(m: re.Match[str]) -> str:
     return table.replace('class="dataframe', 'class="print-wide dataframe', 1)
 
 
-def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
+def live_root(html_dir: Path) -> Path:
+    """The multi-page HTML build a printed live-page link opens: ``html/`` beside a
+    ``singlehtml`` build, else the build itself."""
+    html_dir = Path(html_dir)
+    beside = html_dir.parent / "html"
+    return beside if html_dir.name == "singlehtml" and beside.is_dir() else html_dir
+
+
+def print_copy(page: Path, pdf_dir: Path, live: Path | None = None) -> tuple[str, list[Path]]:
     """The HTML of ``page`` as printed, and the files its links need beside the PDF.
 
     Links to ``page`` itself (``intro.html#x``) become in-document anchors (``#x``), which
@@ -121,7 +131,9 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
     relative link; :func:`relative_file_links` makes it relative in the printed PDF);
     ``<wbr>`` after each dot and underscore of inline code lets a long name
     (``mechlib.doe.centered_l2``) break there in a narrow table column; a data frame wider than
-    a portrait page (:func:`frame_chars`) gets the class ``print-wide``.
+    a portrait page (:func:`frame_chars`) gets the class ``print-wide``; a link to a live page
+    (class ``live-page``, ``data-page`` naming it) opens that page of the HTML build ``live``
+    (an absolute ``file:`` URI, made relative to the PDF by :func:`relative_file_links`).
 
     Parameters
     ----------
@@ -129,6 +141,8 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
         The HTML page.
     pdf_dir : Path
         The folder of the PDF.
+    live : Path, optional
+        The multi-page HTML build (:func:`live_root`); live-page links stay as they are without.
 
     Returns
     -------
@@ -150,6 +164,11 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
         return f"{m.group(1)}{href}{m.group(3)}"
 
     text = LINK.sub(relink, page.read_text(encoding="utf-8"))
+    if live is not None:
+        text = LIVE.sub(
+            lambda m: m.group(1) + html.escape((live.resolve() / m.group(2)).as_uri()) + m.group(3),
+            text,
+        )
     text = CODE.sub(
         lambda m: m.group(1) + re.sub(r"([._])", r"\1<wbr>", m.group(2)) + m.group(3), text
     )
@@ -188,7 +207,7 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     with tempfile.TemporaryDirectory() as tmp:
         parts = [Path(tmp) / f"{i:03d}.pdf" for i in range(len(pages))]
         for i, (page, part) in enumerate(zip(pages, parts, strict=True)):
-            text, files = print_copy(page, out.parent)
+            text, files = print_copy(page, out.parent, live_root(html_dir))
             for file in files:
                 shutil.copyfile(file, out.parent / file.name)
             copy = page.with_name(f".print-{page.name}")  # beside the page: its links resolve
@@ -207,25 +226,31 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
 
 def relative_file_links(pdf: Path) -> int:
     """Rewrite the PDF's links to files beside it (``/URI (file:///…/<dir>/name)``, all Chromium
-    writes) as links relative to the PDF (``/URI (name)``), so that they work wherever the PDF
-    and its files are moved together; return how many were rewritten.
+    writes) as links relative to the PDF (``/URI (name)``), and links to files in the folder
+    above it (the HTML build beside the PDF's folder: ``file:///…/_build/html/x.html``) as
+    ``/URI (../html/x.html)``, so that they work wherever the PDF and its files are moved
+    together; return how many were rewritten.
 
     The new link is padded with spaces (blanks between a dictionary's entries) to the old one's
     length, so that every object keeps its byte offset and the cross-reference table stays valid.
     """
     pdf = Path(pdf)
     data = pdf.read_bytes()
-    prefix = pdf.parent.resolve().as_uri().encode() + b"/"
+    here = pdf.parent.resolve()
+    count = 0
+    for folder, up, name in ((here, b"", rb"[^()/\\]+"), (here.parent, b"../", rb"[^()\\]+")):
+        prefix = folder.as_uri().encode() + b"/"
 
-    def relative(m: re.Match[bytes]) -> bytes:
-        old = m.group(0)
-        new = b"/URI (" + m.group(1) + b")"
-        return new + b" " * (len(old) - len(new))
+        def relative(m: re.Match[bytes], up: bytes = up) -> bytes:
+            old = m.group(0)
+            new = b"/URI (" + up + m.group(1) + b")"
+            return new + b" " * (len(old) - len(new))
 
-    pattern = re.compile(rb"/URI \(" + re.escape(prefix) + rb"([^()/\\]+)\)")
-    out, count = pattern.subn(relative, data)
+        pattern = re.compile(rb"/URI \(" + re.escape(prefix) + b"(" + name + rb")\)")
+        data, n = pattern.subn(relative, data)
+        count += n
     if count:
-        pdf.write_bytes(out)
+        pdf.write_bytes(data)
     return count
 
 

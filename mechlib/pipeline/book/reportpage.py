@@ -1,9 +1,13 @@
-"""The reproduction report page (ReScience style) and its verdict summary.
+"""The reproduction report page (ReScience style), its verdict summary and its appendix.
 
 Rows come from the records the notebooks wrote (:mod:`mechlib.reporting.report` builds them); this
-module
-only arranges them: one table per thesis chapter in the thesis's order, a count of verdicts at the
-top, each row linked to the section of the chapter page that shows it.
+module only arranges them. The report holds the rows on the thesis's own values and claims: one
+table per thesis chapter in the thesis's order, each row linked to the section of the chapter page
+that shows it. The rows beyond the thesis (:data:`BEYOND`: our findings and values with nothing
+published to compare) go to an appendix, one compact table per page of the book
+(:func:`appendix_table`). In both, a p-value below :data:`P_FLOOR` reads "p < 1e-10" (a normal
+approximation says nothing further out) and a time has two significant digits
+(:func:`print_numbers`).
 """
 
 from __future__ import annotations
@@ -23,6 +27,17 @@ STATEMENT_ROWS = (CLAIM_PUBLISHED, report.CHECK_PUBLISHED)
 #: significant digits of our values shown in the table
 VALUE_DIGITS = 4
 _NUMBER = re.compile(r"(?<![\w.])-?\d+(?:\.\d+)?(?:e[+-]?\d+)?(?![\w.])")
+#: the rows beyond the thesis, printed in the appendix (the counts table's "beyond the thesis")
+BEYOND = (cat.CAT_OURS, cat.CAT_COMPUTED)
+#: the smallest p-value printed as a number; below it the text reads "p < 1e-10"
+P_FLOOR = 1e-10
+#: significant digits of a time
+TIME_DIGITS = 2
+_P_VALUE = re.compile(r"\bp = (\d+(?:\.\d+)?(?:e[+-]?\d+)?)")
+_TIME = re.compile(r"(?<![\w.])(\d+(?:\.\d+)?(?:e[+-]?\d+)?)( ?(?:µs|ms|ns)\b)")
+#: a summary of a long array (:func:`mechlib.reporting.categories.summarise`): its trailing
+#: "max |x|" repeats the larger end of its range
+_SUMMARY_MAX = re.compile(r"(\d+ values(?: \([^)]*\))? from \S+ to \S+), max \|x\| = \S+")
 
 
 @dataclass(frozen=True)
@@ -62,7 +77,7 @@ def verdict_cell(fields: dict[str, Any]) -> str:
         marked = f"{category_markup(head)}: {verdict_markup(fields['claim'])}"
     else:
         marked = category_markup(category)
-    return f"{marked}: {_escape(detail)}" if detail else marked
+    return f"{marked}: {_escape(print_numbers(detail))}" if detail else marked
 
 
 def fmt_number(x: float, digits: int = VALUE_DIGITS) -> str:
@@ -76,6 +91,32 @@ def fmt_number(x: float, digits: int = VALUE_DIGITS) -> str:
 def shorten_numbers(text: str, digits: int = VALUE_DIGITS) -> str:
     """Every plain number in a value list rounded by :func:`fmt_number`; other text kept."""
     return _NUMBER.sub(lambda m: fmt_number(float(m.group(0)), digits), text)
+
+
+def print_numbers(text: str) -> str:
+    """``text`` as the report prints it: a p-value below :data:`P_FLOOR` as ``p < 1e-10``, a
+    time (µs, ms, ns) to :data:`TIME_DIGITS` significant digits, and an array's summary without
+    its ``max |x|`` (the larger end of the range it gives).
+
+    >>> print_numbers("p = 2.1e-126; 1.6001 µs; 2.2942e+05 µs; 12 values from -1 to 3, max |x| = 3")
+    'p < 1e-10; 1.6 µs; 230,000 µs; 12 values from -1 to 3'
+    """
+
+    def p_value(m: re.Match[str]) -> str:
+        return f"p < {P_FLOOR:.0e}" if float(m.group(1)) < P_FLOOR else m.group(0)
+
+    def time(m: re.Match[str]) -> str:
+        rounded = float(f"{float(m.group(1)):.{TIME_DIGITS}g}")
+        return (f"{rounded:,.0f}" if rounded >= 100 else f"{rounded:g}") + m.group(2)
+
+    text = _P_VALUE.sub(p_value, text)
+    text = _TIME.sub(time, text)
+    return _SUMMARY_MAX.sub(r"\1", text)
+
+
+def is_beyond(row: Row) -> bool:
+    """Whether a row goes beyond the thesis (category in :data:`BEYOND`): the appendix prints it."""
+    return row.category in BEYOND
 
 
 def _escape(text: object) -> str:
@@ -124,11 +165,79 @@ def chapter_table(rows: Sequence[Row], chapter: Chapter, link: Callable[[str, st
         ours = cells["ours"] if f["published"] in STATEMENT_ROWS else shorten_numbers(cells["ours"])
         lines += [
             f"* - {link(row.page, f['artefact'])}",
-            f"  - {_escape(f['quantity'])}",
-            f"  - {_escape(cells['published'])}",
-            f"  - {_escape(ours)}",
+            f"  - {_escape(print_numbers(f['quantity']))}",
+            f"  - {_escape(print_numbers(cells['published']))}",
+            f"  - {_escape(print_numbers(ours))}",
             f"  - {_escape(cells['difference'])}",
             f"  - {verdict_cell(f)}",
+        ]
+    lines.append("```")
+    return "\n".join(lines)
+
+
+def appendix_cells(fields: dict[str, Any]) -> tuple[str, str]:
+    """The Ours and Verdict cells of a row beyond the thesis, in MyST: our value (with the
+    published one it was set against, if any) and, for a finding of ours, its verdict word."""
+    cells = verdicts.report_cells(fields)
+    published = cells["published"]
+    if published in STATEMENT_ROWS:
+        ours = cells["ours"]
+    else:
+        ours = shorten_numbers(cells["ours"])
+        if published not in ("—", ""):
+            ours += f" (published {published}; difference {cells['difference']})"
+    if verdicts.row_category(fields) == cat.CAT_COMPUTED:
+        verdict = "computed"
+    else:
+        verdict = verdict_cell(fields).replace(category_markup(cat.CAT_OURS), "finding", 1)
+    return _escape(print_numbers(ours)), verdict
+
+
+def short_artefact(text: str) -> str:
+    """What the appendix's Artefact cell shows of a row's artefact: a thesis artefact as named
+    ("Fig 10", "Beyond the thesis: the Eq 8 family"), else the part that tells rows of one page
+    apart ("Beyond the 5R (3-RRR)" → "3-RRR", "…: lean mesh" → "lean mesh"), else "section"."""
+    if artefacts.parse(text):
+        return text
+    part = re.search(r"\(([^)]*)\)|: (.+)$", text)
+    return (part.group(1) or part.group(2)) if part else "section"
+
+
+def appendix_table(rows: Sequence[Row], link: Callable[[str, str, str], str]) -> str:
+    """A compact MyST list-table of one page's rows beyond the thesis, in the page's order.
+
+    Parameters
+    ----------
+    rows : sequence of Row
+        The rows, all of one page.
+    link : callable
+        ``link(page, artefact_text, shown_text)`` returns the MyST link to the section showing
+        the row.
+
+    Returns
+    -------
+    str
+        Columns: artefact (:func:`short_artefact`, linked), quantity or finding, ours (with the
+        published value it was set against, if any), verdict.
+    """
+    lines = [
+        "```{list-table}",
+        ":header-rows: 1",
+        ":widths: 12 42 30 16",
+        ":class: repro-report repro-appendix",
+        "",
+        "* - Artefact",
+        "  - Quantity or finding",
+        "  - Ours",
+        "  - Verdict",
+    ]
+    for row in rows:
+        ours, verdict = appendix_cells(row.fields)
+        lines += [
+            f"* - {link(row.page, row.fields['artefact'], short_artefact(row.fields['artefact']))}",
+            f"  - {_escape(print_numbers(row.fields['quantity']))}",
+            f"  - {ours}",
+            f"  - {verdict}",
         ]
     lines.append("```")
     return "\n".join(lines)
