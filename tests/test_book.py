@@ -210,9 +210,23 @@ def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
     order = [
         line.split(":")[1].rstrip("]") for line in table.splitlines() if line.startswith("* - LINK")
     ]
-    assert order == ["Table 1", "Table 3", "Table 5", "Fig 2", "Fig 6", "Eq 8"]
-    assert "x: T1D1 (-1.0 N)" in table  # claim evidence is shown as written
+    # the compared values in the thesis's order, then the checks and claims (evidence as text)
+    assert order == ["Table 1", "Table 5", "Fig 2", "Eq 8", "Table 3", "Fig 6"]
+    values, statements = table.split("```\n\n```")
+    assert "  - Published" in values and "  - Evidence" in statements
+    assert "x: T1D1 (-1.0 N)" in statements  # claim evidence is shown as written
     assert "{category}`diverges`: non-linear" in table  # the category (marked), then the cause
+
+
+def test_value_cells_print_summaries_alike_and_ours_with_the_thesis_digits() -> None:
+    published = "72 values (12 × 6) from -7.863e+04 to 78610, max |x| = 78610"
+    assert reportpage.compact_summary(published) == "12 × 6 values, -7.863e+04 to 7.861e+04"
+    assert reportpage.compact_summary("16 values from -1 to 2") == "16 values, -1 to 2"
+    assert reportpage.compact_summary("110.73, 0.123456", shorten=False) == "110.73, 0.123456"
+    assert reportpage.ours_cell("0.0279401234", "0.0279401") == "0.0279401"
+    assert reportpage.ours_cell("1.23456, 2", "1, 2") == "1.235, 2"
+    assert reportpage.is_statement({"published": "(diagram)"})
+    assert not reportpage.is_statement({"published": "1, 2"})
 
 
 def test_printed_numbers_floor_p_values_round_times_and_drop_a_repeated_maximum() -> None:
@@ -241,7 +255,8 @@ def test_rows_beyond_the_thesis_go_to_the_appendix_grouped_by_page(tmp_path: Pat
     appendix = bookbuild.appendix_markdown(rows, chapters, link)
     assert "largest difference" not in main and "2 more rows of this chapter" in main
     assert "## Page B" in appendix and "{doc}`lean mesh </chapters/b>`" in appendix
-    assert "110.9 (published 110.73; difference" in appendix and "computed" in appendix
+    # our value with as many digits as the thesis printed, the published value as printed
+    assert "110.86 (published 110.73; 0.117 %" in appendix and "computed" in appendix
     assert "err" not in appendix.split("## Page B")[1]
 
 

@@ -248,9 +248,19 @@ def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Pa
     assert f'href="{(tmp_path / "pdf" / "d.zip").resolve().as_uri()}"' in text
     assert 'href="gone.zip"' in text  # no file in the build: left as it is
     assert "mechlib.<wbr>doe.<wbr>l2_<wbr>cd" in text
-    assert text.count("print-wide") == 1  # 12 columns of 12 characters; the other is narrow
+    # 12 columns of 12 characters: portrait in a narrow face; the other frame fits as it is
+    assert text.count("print-narrow") == 1 and "print-wide" not in text
     assert pdf.frame_chars(f"<table>{wide}</table>") == 12 * 12
     assert pdf.frame_chars("<table><tr><th>a long header</th></tr></table>") == 6 + 2
+    # a header breaks after its underscores; cells between words (a number stays whole)
+    assert (
+        pdf.frame_chars("<table><tr><th>tab_half_width</th><td>1 to 2</td></tr></table>") == 7 + 4
+    )
+    frame = '<table class="dataframe"><tr><th>tab_half_width</th></tr></table>'
+    assert pdf.header_breaks(frame).count("_<wbr>") == 2
+    widest = "<tr>" + "<td>123456.789</td>" * 14 + "</tr>"
+    marked = pdf.FRAME.sub(pdf.mark_wide, f'<table class="dataframe">{widest}</table>')
+    assert 'class="print-wide dataframe' in marked  # 168 characters: a landscape page
 
 
 def test_missing_tools_are_reported(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -305,20 +315,30 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
     assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
     assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
     assert problems[4].startswith("text at 5.00 pt on page 1 ('small print'), allowed ≥ 7.0")
-    assert problems[5].startswith("page 2 is near-blank: its text spans")  # one caption line
-    assert problems[6].startswith("page 2 begins with a caption parted from its figure")
-    assert len(problems) == 7
+    # page 1 ends at a forced break inside the chapter; page 2, its tail, holds one line
+    assert problems[5].startswith("page 1 is near-blank: its text spans 18 %")
+    assert problems[6].startswith("page 2 is near-blank")
+    assert problems[7].startswith("page 2 begins with a caption parted from its figure")
+    assert len(problems) == 8
     assert pdf.main(["check", "--pdf", str(tmp_path / "bad.pdf"), "--html", str(bad)]) == 1
 
 
-def test_near_blank_pages_fail_unless_they_hold_a_figure() -> None:
+def test_near_blank_pages_fail_unless_they_hold_a_figure_or_end_a_chapter() -> None:
     full = [(60.0 + 14 * k, f"line {k} of a full page") for k in range(40)]
+    tail = [(60.0, "Provenance of the page"), (74.0, "commit abc"), (88.0, "Python 3.11")]
     pages = pdfpages.parse_layout(
-        layout(full, [(60.0, "Provenance of the page"), (74.0, "commit abc")], [(60.0, "x")])
+        layout(full, tail, [(60.0, "Second chapter")], [(60.0, "x")], tail, [(60.0, "x")])
     )
-    assert [n for n, _ in pdfpages.sparse_pages(pages, image_pages={3})] == [2]
-    listing = "page num type\n---\n   3  0 image 64 48\n   3  1 smask 64 48\n"
-    assert pdfpages.image_pages(listing) == {3}
+    starts = pdfpages.book_page_starts(pages, ["First chapter", "Second chapter"])
+    assert starts == {3}  # the first title is on no page; a later repeat starts nothing
+    # 2: a chapter's last page with three lines (5.3 %); 3: one line; 4: figure; 5: mid-chapter
+    # at 5.3 %; 6: the book's last page with one line (1.5 %)
+    sparse = pdfpages.sparse_pages(pages, figure_pages={4}, starts=starts)
+    assert [n for n, _ in sparse] == [3, 5, 6]
+    listing = "page num type width height\n---\n   3  0 image 64 48\n   3  1 smask 64 48\n"
+    listing += "   5  2 image 2123 424\n"  # a box's shadow, rasterised: no figure of the book
+    assert pdfpages.image_pages(listing) == {3, 5}
+    assert pdfpages.image_pages(listing, {(64, 48)}) == {3}
 
 
 def test_a_word_broken_inside_a_narrow_column_is_found() -> None:

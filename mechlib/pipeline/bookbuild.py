@@ -253,7 +253,7 @@ def appendix_markdown(
                 "",
                 f"{chapter.caption}; the page: {{doc}}`{title} </chapters/{page}>`.",
                 "",
-                reportpage.appendix_table(mine, link),
+                reportpage.appendix_table(mine, link, title),
                 "",
             ]
     return "\n".join(lines)

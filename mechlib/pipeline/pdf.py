@@ -50,8 +50,14 @@ LIVE = re.compile(r'(<a class="live-page" data-page="([^"]*)" href=")#(")')
 FRAME = re.compile(r'<table [^>]*class="dataframe[^"]*"[^>]*>.*?</table>', re.DOTALL)
 CELL = re.compile(r"<t([hd])\b([^>]*)>(.*?)</t[hd]>", re.DOTALL)
 # a data frame wider than this many characters of its font (8 pt: a portrait page's width) is
-# printed on a landscape page (book.css: table.print-wide); header cells wrap between words
+# printed on a landscape page (book.css: table.print-wide); cells wrap between words (a
+# number stays whole), headers also after their underscores (header_breaks)
 PORTRAIT_CHARS = 98
+# up to this many it is printed portrait in a narrow face at 7 pt instead (table.print-narrow:
+# Liberation Sans Narrow, which Debian's chromium recommends, sets a digit in 0.46 em, 3.2 pt:
+# 160 characters take 512 of the 527 pt between the margins); a landscape page would force a
+# page break before and after the table and leave the page before it part empty
+NARROW_CHARS = 160
 
 
 find_browser = chromium.find_browser
@@ -93,25 +99,43 @@ def local_file(page: Path, href: str) -> Path | None:
 
 
 def frame_chars(table: str) -> int:
-    """Width of a data frame in characters: each column's longest cell (a header's longest word)
-    and two characters of padding (column-spanning header cells are left out)."""
+    """Width of a data frame in characters: each column's longest word (cells wrap between words
+    in print, a header's names also after their underscores) and two characters of padding
+    (column-spanning header cells are left out)."""
     widths: dict[int, int] = {}
     for row in re.findall(r"<tr\b.*?</tr>", table, re.DOTALL):
         for col, (kind, attrs, body) in enumerate(CELL.findall(row)):
             if "colspan" in attrs:
                 break
-            words = html.unescape(re.sub(r"<[^>]*>", " ", body)).split() or [""]
-            wide = max(map(len, words)) if kind == "h" else len(" ".join(words))
+            text = html.unescape(re.sub(r"<[^>]*>", " ", body))
+            if kind == "h":
+                text = text.replace("_", "_ ")
+            wide = max(map(len, text.split() or [""]))
             widths[col] = max(widths.get(col, 0), wide + 2)
     return sum(widths.values())
 
 
+def header_breaks(table: str) -> str:
+    """A data frame's table with ``<wbr>`` after each underscore of its header cells, so that a
+    column named ``tab_half_width`` may wrap there (:func:`frame_chars` counts it so)."""
+    return re.sub(
+        r"(<th\b[^>]*>)(.*?)(</th>)",
+        lambda m: m.group(1) + m.group(2).replace("_", "_<wbr>") + m.group(3),
+        table,
+        flags=re.DOTALL,
+    )
+
+
 def mark_wide(m: re.Match[str]) -> str:
-    """A data frame's table, its class ``print-wide`` added when it is wider than a page."""
-    table = m.group(0)
-    if frame_chars(table) <= PORTRAIT_CHARS:
+    """A data frame's table (:func:`header_breaks`), its class ``print-narrow`` added when it is
+    wider than a page at 8 pt (:data:`PORTRAIT_CHARS`), ``print-wide`` when wider than a page
+    in a narrow face at 7 pt (:data:`NARROW_CHARS`)."""
+    table = header_breaks(m.group(0))
+    chars = frame_chars(table)
+    if chars <= PORTRAIT_CHARS:
         return table
-    return table.replace('class="dataframe', 'class="print-wide dataframe', 1)
+    kind = "print-narrow" if chars <= NARROW_CHARS else "print-wide"
+    return table.replace('class="dataframe', f'class="{kind} dataframe', 1)
 
 
 def live_root(html_dir: Path) -> Path:

@@ -379,7 +379,8 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
     ]
     layout = run_tool(["pdftotext", "-bbox-layout", "-enc", "UTF-8", str(pdf), "-"])
     hrefs = [html.unescape(h) for h in re.findall(r'<a href="([^"]*)"', xml)]
+    figures = pdfpages.image_pages(listing, set(summary.image_sizes))
     problems += pdfpages.layout_problems(
-        layout, pdfpages.image_pages(listing), summary.words, summary.live, hrefs, Path(pdf).parent
+        layout, figures, summary.words, summary.live, hrefs, Path(pdf).parent, summary.titles
     )
     return problems + broken_links(hrefs, Path(pdf).parent, summary.files)
