@@ -183,6 +183,14 @@ def test_captions_at_the_top_of_a_page_are_parted_from_their_figure() -> None:
         (2, "Figure 2 a caption whose figure is on the page before")
     ]
     assert pdfcheck.parted_captions(layout([(30.0, "Figures 2–5 draw it")])) == []
+    # given the book's captions, a sentence that begins with a reference is no caption
+    text = layout([(32.0, "Figure B.2 shows where"), (46.0, "x")], [(32.0, "Figure B.3 Mesh of")])
+    captions = pdfpages.figure_captions(
+        '<figcaption><p><span class="caption-number">Figure B.3 </span>Mesh of\n the plate'
+        "</p></figcaption><figcaption>Figure B.2 The plate</figcaption>"
+    )
+    assert captions == ["Figure B.3 Mesh of the plate", "Figure B.2 The plate"]
+    assert pdfpages.parted_captions(text, captions) == [(2, "Figure B.3 Mesh of")]
 
 
 def test_links_to_files_must_be_relative_and_name_a_file_beside_the_pdf(tmp_path: Path) -> None:
@@ -300,7 +308,8 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
         bad / "index.html",
         '<h1>Broken page</h1><p>Raw \\(x^2\\) math.</p><img src="f.png" style="display:none">'
         '<p>Show code cell source</p><p style="font-size:5pt">small print</p>'
-        '<p style="break-before:page">Figure 1 a caption alone</p>',
+        '<figure style="break-before:page"><figcaption>Figure 1 a caption alone</figcaption>'
+        "</figure>",
     )
     pdf.build(good, tmp_path / "good.pdf")
     assert pdfcheck.pdf_pages(tmp_path / "good.pdf") == 2  # each page printed, then joined

@@ -194,6 +194,7 @@ class HtmlSummary:
     files: list[str] = field(default_factory=list)  # names of the files the pages link to
     words: set[str] = field(default_factory=set)  # every word of the pages' text
     live: list[str] = field(default_factory=list)  # live pages a printed page links to
+    captions: list[str] = field(default_factory=list)  # the figure captions' text
 
 
 def summarize_html(html_dir: Path) -> HtmlSummary:
@@ -205,17 +206,19 @@ def summarize_html(html_dir: Path) -> HtmlSummary:
     pages = page_order(html_dir)
     words: set[str] = set()
     live: list[str] = []
+    captions: list[str] = []
     for page in pages:
         text = page.read_text(encoding="utf-8")
         info = parse_page(text)
         words |= pdfpages.book_words(html.unescape(re.sub(r"<[^>]*>", " ", text)))
         live += pdfpages.live_pages(text)
+        captions += pdfpages.figure_captions(text)
         titles += [t for t in info.titles if t not in titles]
         files += [n for n in map(linked_file, info.files) if n and n not in files]
         chars += info.text_chars
         documents += info.documents + 1  # singlehtml: the root page has no marker
         sizes.update(s for s in (image_size(page, src) for src in info.images) if s)
-    return HtmlSummary(len(pages), documents, titles, sizes, chars, files, words, live)
+    return HtmlSummary(len(pages), documents, titles, sizes, chars, files, words, live, captions)
 
 
 def page_range(summary: HtmlSummary, min_pages: int = 1) -> tuple[int, int]:
@@ -381,6 +384,13 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
     hrefs = [html.unescape(h) for h in re.findall(r'<a href="([^"]*)"', xml)]
     figures = pdfpages.image_pages(listing, set(summary.image_sizes))
     problems += pdfpages.layout_problems(
-        layout, figures, summary.words, summary.live, hrefs, Path(pdf).parent, summary.titles
+        layout,
+        figures,
+        summary.words,
+        summary.live,
+        hrefs,
+        Path(pdf).parent,
+        summary.titles,
+        summary.captions,
     )
     return problems + broken_links(hrefs, Path(pdf).parent, summary.files)

@@ -31,6 +31,7 @@ MIN_FILL = 0.2
 MIN_TAIL_FILL = 0.05
 CAPTION = re.compile(r"Figure\s+(?:[A-Z]\.)?\d+\b")  # numfig_format of book/_config.yml (B.1)
 CAPTION_TOP_PT = 24.0  # a caption this close to the top margin has no figure above it
+CAPTION_CHARS = 24  # a caption's first characters compared with the HTML's ("Figure B.3 The …")
 #: characters a line break may follow or precede inside a word: code names break after dots and
 #: underscores (mechlib/pipeline/pdf.py), compounds at their hyphens and dashes
 BREAKABLE = "._/-–—"
@@ -232,13 +233,24 @@ def unlinked_live_pages(live: list[str], hrefs: list[str], pdf_dir: Path) -> lis
     return problems
 
 
-def parted_captions(layout: str) -> list[tuple[int, str]]:
+def figure_captions(page_html: str) -> list[str]:
+    """The text of each figure caption (``<figcaption>``) of an HTML page, whitespace folded."""
+    return [
+        " ".join(html.unescape(re.sub(r"<[^>]*>", " ", body)).split())
+        for body in re.findall(r"<figcaption\b[^>]*>(.*?)</figcaption>", page_html, re.S)
+    ]
+
+
+def parted_captions(layout: str, captions: Sequence[str] | None = None) -> list[tuple[int, str]]:
     """Page and first line of each caption parted from its figure (``pdftotext -bbox-layout``).
 
     A caption follows its figure: one that is a page's first line, within ``CAPTION_TOP_PT``
     of the highest first line of any page, has its figure on the page before (lines above
-    the page, text hidden off it, are left out).
+    the page, text hidden off it, are left out). A line is a caption when it reads "Figure n"
+    and, given the book's ``captions`` (:func:`figure_captions`), opens like one of them: a
+    sentence of the text that begins with a reference ("Figure B.37 shows …") is none.
     """
+    heads = None if captions is None else {_flat(c)[:CAPTION_CHARS] for c in captions}
     firsts = []
     for page in layout.split("<page ")[1:]:
         lines = [
@@ -250,7 +262,10 @@ def parted_captions(layout: str) -> list[tuple[int, str]]:
     return [
         (n, f[1])
         for n, f in enumerate(firsts, start=1)
-        if f and f[0] <= top + CAPTION_TOP_PT and CAPTION.match(f[1])
+        if f
+        and f[0] <= top + CAPTION_TOP_PT
+        and CAPTION.match(f[1])
+        and (heads is None or any(h.startswith(_flat(f[1])[:CAPTION_CHARS]) for h in heads))
     ]
 
 
@@ -262,9 +277,11 @@ def layout_problems(
     hrefs: list[str],
     pdf_dir: Path,
     titles: Sequence[str] = (),
+    captions: Sequence[str] | None = None,
 ) -> list[str]:
     """Every problem of this module's checks, one line each, naming the value found and the one
-    allowed; ``titles`` are the book pages' titles (:func:`book_page_starts`)."""
+    allowed; ``titles`` are the book pages' titles (:func:`book_page_starts`), ``captions`` its
+    figure captions (:func:`parted_captions`)."""
     pages = parse_layout(layout)
     starts = book_page_starts(pages, list(titles))
     problems = [
@@ -279,6 +296,6 @@ def layout_problems(
     ]
     problems += [
         f"page {n} begins with a caption parted from its figure ({line[:40]!r}), allowed: none"
-        for n, line in parted_captions(layout)
+        for n, line in parted_captions(layout, captions)
     ]
     return problems + unlinked_live_pages(live, hrefs, pdf_dir)

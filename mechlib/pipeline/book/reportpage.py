@@ -50,6 +50,11 @@ VALUE_COLUMNS = (
     ("Verdict", 21),
 )
 STATEMENT_COLUMNS = (("Artefact", 11), ("Claim or check", 31), ("Evidence", 38), ("Verdict", 20))
+APPENDIX_COLUMNS = (
+    ("Artefact", 11),
+    ("Quantity or finding", 39),
+    ("Ours; a finding's verdict", 50),
+)
 _SUMMARY_MAX = re.compile(r"(\d+ values(?: \([^)]*\))? from \S+ to \S+), max \|x\| = \S+")
 
 
@@ -262,9 +267,10 @@ def _table_head(columns: Sequence[tuple[str, int]], classes: str) -> list[str]:
     ]
 
 
-def appendix_cells(fields: dict[str, Any]) -> tuple[str, str]:
-    """The Ours and Verdict cells of a row beyond the thesis, in MyST: our value (with the
-    published one it was set against, if any) and, for a finding of ours, its verdict word."""
+def appendix_cells(fields: dict[str, Any]) -> str:
+    """The Ours cell of a row beyond the thesis, in MyST: our value (with the published one it
+    was set against, if any), and after it, for a finding of ours, its verdict word (a computed
+    value has none: the column would hold "computed" row after row)."""
     cells = verdicts.report_cells(fields)
     published = cells["published"]
     if published in STATEMENT_ROWS:
@@ -273,11 +279,11 @@ def appendix_cells(fields: dict[str, Any]) -> tuple[str, str]:
         ours = ours_cell(cells["ours"], published)
         if published not in ("—", ""):
             ours += f" (published {compact_summary(published, False)}; {cells['difference']})"
+    ours = _escape(print_numbers(ours))
     if verdicts.row_category(fields) == cat.CAT_COMPUTED:
-        verdict = "computed"
-    else:
-        verdict = verdict_cell(fields).replace(category_markup(cat.CAT_OURS), "finding", 1)
-    return _escape(print_numbers(ours)), verdict
+        return ours
+    verdict = verdict_cell(fields).replace(category_markup(cat.CAT_OURS), "finding", 1)
+    return f"{ours} — {verdict}"
 
 
 def short_artefact(text: str, page_title: str = "") -> str:
@@ -318,28 +324,16 @@ def appendix_table(
     Returns
     -------
     str
-        Columns: artefact (:func:`short_artefact`, linked), quantity or finding, ours (with the
-        published value it was set against, if any), verdict.
+        Columns: artefact (:func:`short_artefact`, linked), quantity or finding, ours
+        (:func:`appendix_cells`).
     """
-    lines = [
-        "```{list-table}",
-        ":header-rows: 1",
-        ":widths: 12 42 30 16",
-        ":class: repro-report repro-appendix",
-        "",
-        "* - Artefact",
-        "  - Quantity or finding",
-        "  - Ours",
-        "  - Verdict",
-    ]
+    lines = _table_head(APPENDIX_COLUMNS, "repro-report repro-appendix")
     for row in rows:
-        ours, verdict = appendix_cells(row.fields)
         shown = short_artefact(row.fields["artefact"], page_title)
         lines += [
             f"* - {link(row.page, row.fields['artefact'], shown)}",
             f"  - {_escape(print_numbers(row.fields['quantity']))}",
-            f"  - {ours}",
-            f"  - {verdict}",
+            f"  - {appendix_cells(row.fields)}",
         ]
     lines.append("```")
     return "\n".join(lines)
