@@ -383,3 +383,36 @@ def test_a_notebook_still_executing_is_no_chapter(tmp_path: Path) -> None:
     sections = bookbuild.copy_chapters(executed, tmp_path / "chapters")
     assert list(sections) == ["done"]
     assert [p.name for p in (tmp_path / "chapters").iterdir()] == ["done.ipynb"]
+
+
+def test_p_values_below_the_floor_read_p_below_1e_10_in_text_and_frames() -> None:
+    from mechlib.pipeline.book import pvalues
+
+    glued = {"data": {pvalues.GLUE_PREFIX + "text/plain": "2.0657e-126"}}
+    glued["metadata"] = {"scrapbook": {"name": "p_small"}}
+    large = {"data": {pvalues.GLUE_PREFIX + "text/plain": "0.03"}, "metadata": {}}
+    large["metadata"]["scrapbook"] = {"name": "p_large"}
+    cells = [
+        {"cell_type": "code", "source": "", "outputs": [glued, large]},
+        {
+            "cell_type": "markdown",
+            "source": "(p = {glue:text}`p_small:.1e`; p = {glue:text}`p_large:.2g`)",
+        },
+    ]
+    assert pvalues.floor_glued_p_values(cells) == 1
+    assert cells[1]["source"] == "(p < 1e-10; p = {glue:text}`p_large:.2g`)"
+    frame = (
+        '<table class="dataframe"><thead><tr><th></th><th>a</th><th>Wilcoxon p</th></tr></thead>'
+        "<tbody><tr><th>x</th><td>1e-20</td><td>2.1e-126</td></tr>"
+        "<tr><th>Wilcoxon p (param.)</th><td>3e-12</td><td>0.04</td></tr></tbody></table>"
+    )
+    out = pvalues.print_frame(frame)
+    assert "<tr><th>x</th><td>1e-20</td><td>&lt; 1e-10</td></tr>" in out  # the p column only
+    assert "<td>&lt; 1e-10</td><td>0.04</td>" in out  # the p row; 0.04 stays
+    times = (
+        '<table class="dataframe"><thead><tr><th></th><th>µs a pose</th><th>n</th></tr></thead>'
+        "<tbody><tr><th>GP</th><td>4547.2</td><td>1234</td></tr>"
+        "<tr><th>S_T</th><td>0.01412</td><td>35.77</td></tr></tbody></table>"
+    )
+    out = pvalues.print_frame(times)
+    assert "<td>4,500</td><td>1234</td>" in out and "<td>0.014</td><td>35.77</td>" in out
