@@ -177,16 +177,20 @@ def significant_digits(text: str) -> int:
 
 
 def ours_cell(ours: str, published: str) -> str:
-    """Our value as the report prints it: :func:`compact_summary`'d, but a single number set
-    against a single published one keeps as many significant digits as the thesis printed (so
-    that "0.02794" never reads as differing from "0.0279401" in the sixth digit).
+    """Our value as the report prints it: :func:`compact_summary`'d, but numbers set one for one
+    against published ones keep as many significant digits as the thesis printed (so that
+    "0.02794" never reads as differing from "0.0279401" in the sixth digit).
 
-    >>> ours_cell("0.02794012", "0.0279401"), ours_cell("57.5312", "57.53")
-    ('0.0279401', '57.53')
+    >>> ours_cell("0.02794012", "0.0279401"), ours_cell("110.862, 57.5312", "110.73, 57.53")
+    ('0.0279401', '110.86, 57.53')
     """
-    if _NUMBER.fullmatch(ours.strip()) and _NUMBER.fullmatch(published.strip()):
-        digits = max(significant_digits(published), VALUE_DIGITS)
-        return fmt_number(float(ours), digits)
+    mine, theirs = ours.split(", "), published.split(", ")
+    numbers = all(_NUMBER.fullmatch(v.strip()) for v in [*mine, *theirs])
+    if numbers and len(mine) == len(theirs):
+        return ", ".join(
+            fmt_number(float(v), max(significant_digits(p), VALUE_DIGITS))
+            for v, p in zip(mine, theirs, strict=True)
+        )
     return compact_summary(ours)
 
 
