@@ -291,6 +291,8 @@ PDF           := book/_build/pdf/book.pdf
 # fewer pages than this means a truncated print (check-pdf also derives a floor from the amount
 # of text; `pdfinfo book/_build/pdf/book.pdf` gives the page count of a build)
 PDF_MIN_PAGES ?= 50
+# more pages than this is a print that wastes paper: the book is read on paper in one go
+PDF_MAX_PAGES ?= 130
 
 .PHONY: pdf check-pdf
 pdf: $(STAMP)
@@ -300,4 +302,4 @@ pdf: $(STAMP)
 	$(PY) -m mechlib.pipeline.pdf build --html $(PDF_HTML) --out $(PDF)
 
 check-pdf: $(STAMP)
-	$(PY) -m mechlib.pipeline.pdf check --pdf $(PDF) --html $(PDF_HTML) --min-pages $(PDF_MIN_PAGES)
+	$(PY) -m mechlib.pipeline.pdf check --pdf $(PDF) --html $(PDF_HTML) --min-pages $(PDF_MIN_PAGES) --max-pages $(PDF_MAX_PAGES)

@@ -140,6 +140,7 @@ def test_verdicts_on_raw_math_images_titles_and_page_range() -> None:
     summary = pdfcheck.HtmlSummary(3, 3, [], Counter(), text_chars=30_000)
     assert pdfcheck.page_range(summary) == (5, 3 * pdfcheck.MAX_PAGES_PER_DOCUMENT)
     assert pdfcheck.page_range(summary, min_pages=12)[0] == 12
+    assert pdfcheck.page_range(summary, max_pages=130) == (5, 130)  # a ceiling of paper
 
 
 def test_check_names_each_problem_with_its_allowed_value(
@@ -344,6 +345,13 @@ def test_near_blank_pages_fail_unless_they_hold_a_figure_or_end_a_chapter() -> N
     # at 5.3 %; 6: the book's last page with one line (1.5 %)
     sparse = pdfpages.sparse_pages(pages, figure_pages={4}, starts=starts)
     assert [n for n, _ in sparse] == [3, 5, 6]
+    assert pdfpages.page_span(pages, ["First chapter", "Second chapter"], "Second chapter") == 4
+    assert pdfpages.page_span(pages, ["Second chapter"], "Other") == 0
+    long_report = [[(60.0, "Reproduction report")], *[[(60.0, "rows")]] * 15]
+    problems = pdfpages.layout_problems(
+        layout(*long_report), set(range(1, 17)), set(), [], [], Path("."), ["Reproduction report"]
+    )
+    assert problems == ["the report prints on 16 pages, allowed ≤ 15 (one sitting)"]
     listing = "page num type width height\n---\n   3  0 image 64 48\n   3  1 smask 64 48\n"
     listing += "   5  2 image 2123 424\n"  # a box's shadow, rasterised: no figure of the book
     assert pdfpages.image_pages(listing) == {3, 5}

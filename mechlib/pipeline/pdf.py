@@ -11,7 +11,7 @@
     break after their dots and underscores. The print layout itself is ``@media print`` in
     ``book/_static/book.css``.
 
-``python -m mechlib.pipeline.pdf check --pdf book.pdf --html DIR [--min-pages N]``
+``python -m mechlib.pipeline.pdf check --pdf book.pdf --html DIR [--min-pages N] [--max-pages N]``
     exit 1 when the PDF misses part of the book (see :mod:`mechlib.pipeline.pdfcheck`): each
     problem on a line naming the value found and the one allowed.
 
@@ -295,6 +295,7 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--pdf", type=Path, required=True)
     c.add_argument("--html", type=Path, required=True)
     c.add_argument("--min-pages", type=int, default=1)
+    c.add_argument("--max-pages", type=int, default=0, help="a ceiling of the page count")
     sub.add_parser(
         "tools", help="exit 3 (naming them) when programs the PDF route needs are missing"
     )
@@ -309,7 +310,7 @@ def main(argv: list[str] | None = None) -> int:
             out = build(args.html, args.out)
             print(f"PDF: {out.resolve()} ({pdf_pages(out)} pages)")
             return 0
-        problems = check(args.pdf, args.html, args.min_pages)
+        problems = check(args.pdf, args.html, args.min_pages, args.max_pages)
     except ToolMissing as missing:
         print(missing, file=sys.stderr)
         return 3

@@ -221,10 +221,11 @@ def summarize_html(html_dir: Path) -> HtmlSummary:
     return HtmlSummary(len(pages), documents, titles, sizes, chars, files, words, live, captions)
 
 
-def page_range(summary: HtmlSummary, min_pages: int = 1) -> tuple[int, int]:
-    """Allowed page count ``[low, high]`` of the book's PDF."""
+def page_range(summary: HtmlSummary, min_pages: int = 1, max_pages: int = 0) -> tuple[int, int]:
+    """Allowed page count ``[low, high]`` of the book's PDF (``max_pages``: a ceiling, 0 none)."""
     low = max(min_pages, 1, summary.text_chars // MAX_CHARS_PER_PAGE)
-    return low, max(low, MAX_PAGES_PER_DOCUMENT * summary.documents)
+    high = MAX_PAGES_PER_DOCUMENT * summary.documents
+    return low, max(low, min(high, max_pages) if max_pages else high)
 
 
 def parse_pdfimages_list(listing: str) -> Counter[tuple[int, int]]:
@@ -332,7 +333,7 @@ def pdf_pages(pdf: Path) -> int:
     return int(found.group(1))
 
 
-def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
+def check(pdf: Path, html_dir: Path, min_pages: int = 1, max_pages: int = 0) -> list[str]:
     """Problems of the book's PDF against its HTML (empty when it is complete).
 
     Parameters
@@ -343,6 +344,8 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
         The HTML build it was printed from (``html`` or ``singlehtml``).
     min_pages : int
         A lower bound of the page count on top of the one the text size gives.
+    max_pages : int
+        A ceiling of the page count (0: only the runaway bound per document).
 
     Returns
     -------
@@ -352,12 +355,12 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
     summary = summarize_html(html_dir)
     problems = []
     pages = pdf_pages(pdf)
-    low, high = page_range(summary, min_pages)
+    low, high = page_range(summary, min_pages, max_pages)
     if not low <= pages <= high:
         problems.append(
             f"{pages} pages, allowed [{low}, {high}] ({summary.text_chars} characters of text "
             f"at ≤ {MAX_CHARS_PER_PAGE} a page; ≤ {MAX_PAGES_PER_DOCUMENT} pages per document, "
-            f"{summary.documents} documents)"
+            f"{summary.documents} documents; ceiling {max_pages or 'none'})"
         )
     text = run_tool(["pdftotext", "-enc", "UTF-8", str(pdf), "-"])
     problems += [

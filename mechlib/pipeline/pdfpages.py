@@ -30,6 +30,8 @@ MIN_FILL = 0.2
 #: page is three lines of the print's 9.75 pt text; less is a blank sheet for a line or two
 MIN_TAIL_FILL = 0.05
 CAPTION = re.compile(r"Figure\s+(?:[A-Z]\.)?\d+\b")  # numfig_format of book/_config.yml (B.1)
+#: the report, read in one sitting: at most this many pages from its title to the next page's
+REPORT_TITLE, REPORT_MAX_PAGES = "Reproduction report", 15
 CAPTION_TOP_PT = 24.0  # a caption this close to the top margin has no figure above it
 CAPTION_CHARS = 24  # a caption's first characters compared with the HTML's ("Figure B.3 The …")
 #: characters a line break may follow or precede inside a word: code names break after dots and
@@ -116,6 +118,15 @@ def book_page_starts(pages: list[Page], titles: list[str]) -> set[int]:
             starts.add(found)
             first = found + 1
     return starts
+
+
+def page_span(pages: list[Page], titles: list[str], title: str) -> int:
+    """How many pages the book page ``title`` (one of ``titles``) prints on (0: not found)."""
+    starts = sorted(book_page_starts(pages, titles))
+    first = next((n for n in starts if _flat(pages[n - 1].text).startswith(_flat(title))), 0)
+    if not first:
+        return 0
+    return next((n for n in starts if n > first), len(pages) + 1) - first
 
 
 def sparse_pages(
@@ -284,7 +295,13 @@ def layout_problems(
     figure captions (:func:`parted_captions`)."""
     pages = parse_layout(layout)
     starts = book_page_starts(pages, list(titles))
-    problems = [
+    report = page_span(pages, list(titles), REPORT_TITLE)
+    problems = (
+        [f"the report prints on {report} pages, allowed ≤ {REPORT_MAX_PAGES} (one sitting)"]
+        if report > REPORT_MAX_PAGES
+        else []
+    )
+    problems += [
         f"page {n} is near-blank: its text spans {100 * share:.0f} % of its height and it holds "
         f"no figure (allowed ≥ {100 * MIN_FILL:.0f} % or a figure; ≥ {100 * MIN_TAIL_FILL:.0f} % "
         "on the last page of a chapter)"
