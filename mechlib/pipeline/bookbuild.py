@@ -237,11 +237,14 @@ def report_markdown(
 def appendix_markdown(
     rows: dict[int, list[verdicts.ReportRow]], chapters: list[reportpage.Chapter], link: Linker
 ) -> str:
-    """The appendix page: the rows beyond the thesis (:func:`reportpage.is_beyond`), one compact
-    table per page of the book in reading order, each row in its page's order."""
+    """The appendix page: the rows beyond the thesis (:func:`reportpage.is_beyond`), under a
+    heading per thesis chapter one compact table per page of the book in reading order (its
+    heading links the page), each row in its page's order."""
     lines = [APPENDIX_HEADER]
     for chapter in chapters:
         beyond = [r for r in rows[chapter.number] if reportpage.is_beyond(r)]
+        if beyond:
+            lines += [f"## {chapter.caption}", ""]
         for page in dict.fromkeys([*chapter.pages, *(r.page for r in beyond)]):
             mine = [r for r in beyond if r.page == page]
             if not mine:
@@ -249,9 +252,7 @@ def appendix_markdown(
             sections = link.sections.get(page, [])
             title = sections[0].title if sections else page
             lines += [
-                f"## {title}",
-                "",
-                f"{chapter.caption}; the page: {{doc}}`{title} </chapters/{page}>`.",
+                f"### {{doc}}`{title} </chapters/{page}>`",
                 "",
                 reportpage.appendix_table(mine, link, title),
                 "",
