@@ -279,7 +279,7 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff format --check mechlib tests notebooks
 
 clean:
-	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md book/intro.md
+	rm -rf $(BUILD) book/_build book/chapters book/generated book/report.md book/report_beyond.md book/intro.md
 
 # --- PDF of the book --------------------------------------------------------------------------
 # Headless Chromium prints the single-page HTML build after MathJax ran (from the build's own
@@ -291,6 +291,8 @@ PDF           := book/_build/pdf/book.pdf
 # fewer pages than this means a truncated print (check-pdf also derives a floor from the amount
 # of text; `pdfinfo book/_build/pdf/book.pdf` gives the page count of a build)
 PDF_MIN_PAGES ?= 50
+# more pages than this is a print that wastes paper: the book is read on paper in one go
+PDF_MAX_PAGES ?= 130
 
 .PHONY: pdf check-pdf
 pdf: $(STAMP)
@@ -300,4 +302,4 @@ pdf: $(STAMP)
 	$(PY) -m mechlib.pipeline.pdf build --html $(PDF_HTML) --out $(PDF)
 
 check-pdf: $(STAMP)
-	$(PY) -m mechlib.pipeline.pdf check --pdf $(PDF) --html $(PDF_HTML) --min-pages $(PDF_MIN_PAGES)
+	$(PY) -m mechlib.pipeline.pdf check --pdf $(PDF) --html $(PDF_HTML) --min-pages $(PDF_MIN_PAGES) --max-pages $(PDF_MAX_PAGES)

@@ -1,4 +1,5 @@
-"""Book tooling that assembles pages: artefact parsing, cell rules, the report page, toc checks."""
+"""Book tooling that assembles pages: artefact parsing, cell rules, toc checks (the report page:
+tests/test_reportpage.py)."""
 
 from __future__ import annotations
 
@@ -10,8 +11,8 @@ import yaml
 
 from mechlib.paths import REPO_ROOT
 from mechlib.pipeline import bookbuild
-from mechlib.pipeline.book import cells, reportpage
-from mechlib.reporting import artefacts, report, verdicts
+from mechlib.pipeline.book import cells
+from mechlib.reporting import artefacts
 
 FINAL_CELL = 'path = rec.save()\nprint(f"record written to {path}")'
 
@@ -171,47 +172,13 @@ def test_prepare_notebook_applies_every_rule(tmp_path: Path) -> None:
     assert [c["metadata"].get("tags") for c in out["cells"]] == [
         None,
         ["parameters"],
+        None,  # the parameters as printed (printparams)
         ["hide-input"],
         ["remove-cell"],
     ]
-    assert out["cells"][3]["outputs"][0]["text"] == "record written to r.json\n"
+    assert out["cells"][4]["outputs"][0]["text"] == "record written to r.json\n"
     assert secs[0].label == "my-nb-s1" and out["cells"][0]["source"].startswith("(my-nb-s1)=")
     assert nb["cells"][2]["metadata"]["tags"] == []  # the input is not modified
-
-
-# --- report page ---------------------------------------------------------------------------------
-ROWS = [
-    report.compare_row("Eq 8", "S", [1.0], [1.0]),
-    report.compare_row("Table 5", "err", [1.0], [1.5], cause="non-linear"),
-    report.compare_row("Table 1", "levels", [1.0], [1.004], rtol=0.01),
-    report.check_row(
-        "Fig 6", "dominant factors", "x: T1D1 (-1.0 N)", True, basis="thesis-inconsistency"
-    ),
-    report.check_row("Table 3", "m = 6", "no", False, basis="construction"),
-    report.computed_row("Fig 2", "dims", [0.493389]),
-]
-
-
-def test_numbers_keep_integer_digits_and_four_significant() -> None:
-    assert reportpage.fmt_number(575314.0) == "575314"
-    assert reportpage.fmt_number(58.1628) == "58.16"
-    assert reportpage.fmt_number(9.70131e-13) == "9.701e-13"
-    assert (
-        reportpage.shorten_numbers("0.166667, -28.7638, … (36 values)")
-        == "0.1667, -28.76, … (36 values)"
-    )
-
-
-def test_chapter_table_is_in_thesis_order_and_links_each_row() -> None:
-    rows = [reportpage.Row("nb", r) for r in ROWS]
-    chapter = reportpage.Chapter(2, "Chapter 2", ("nb",))
-    table = reportpage.chapter_table(rows, chapter, lambda page, what: f"LINK[{page}:{what}]")
-    order = [
-        line.split(":")[1].rstrip("]") for line in table.splitlines() if line.startswith("* - LINK")
-    ]
-    assert order == ["Table 1", "Table 3", "Table 5", "Fig 2", "Fig 6", "Eq 8"]
-    assert "x: T1D1 (-1.0 N)" in table  # claim evidence is shown as written
-    assert "{category}`diverges`: non-linear" in table  # the category (marked), then the cause
 
 
 # --- toc and report assembly ---------------------------------------------------------------------
@@ -276,18 +243,6 @@ def test_the_books_toc_gives_chapters_2_and_3_with_their_notebooks() -> None:
     assert "published_doe" in chapters[0].pages
 
 
-def test_report_links_rows_to_sections_or_pages(tmp_path: Path) -> None:
-    rec = {"notebook": "a", "values": {}, "report": ROWS}
-    (tmp_path / "a.json").write_text(json.dumps(rec))
-    chapters = [reportpage.Chapter(2, "Chapter 2 — x", ("a",))]
-    link = bookbuild.Linker(
-        {"a": [artefacts.Section("a-s3", "Table 5 — validation", (("table", 5),))]}
-    )
-    text = bookbuild.report_markdown(bookbuild.report_rows(tmp_path, chapters), chapters, link)
-    assert "{ref}`Table 5 <a-s3>`" in text and "{doc}`Eq 8 </chapters/a>`" in text
-    assert verdicts.COUNTS_HEADER in text and text.index("## Summary") < text.index("## Chapter 2")
-
-
 def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_directives() -> None:
     from mechlib.pipeline.book import cells
 
@@ -302,12 +257,13 @@ def test_the_injected_parameters_replace_their_defaults_in_one_cell_without_dire
         ]
     }  # fmt: skip
     out, _ = cells.prepare_notebook(nb, "p", Path("/nowhere"))
-    assert len(out["cells"]) == 2
+    assert len(out["cells"]) == 3
     params = out["cells"][0]["source"]
     assert "fmt" not in params and "seed = 1  # the seed" in params
     assert "geometry = {'a': 1}  # passed by the build; from the model" in params
     assert "extra = 2  # passed by the build" in params
-    assert out["cells"][1]["source"] == "x = [1,  2]\nx\n"
+    assert "`{'a': 1}`" in out["cells"][1]["source"]  # printed with the value it ran with
+    assert out["cells"][2]["source"] == "x = [1,  2]\nx\n"
 
 
 def test_a_notebook_still_executing_is_no_chapter(tmp_path: Path) -> None:

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from mechlib.pipeline import pdf, pdfcheck
+from mechlib.pipeline import pdf, pdfcheck, pdfpages
 
 PAGE = """<html><head>{head}</head><body>
 <nav><img src="logo.png"><h1>Navigation</h1></nav>
@@ -140,6 +140,7 @@ def test_verdicts_on_raw_math_images_titles_and_page_range() -> None:
     summary = pdfcheck.HtmlSummary(3, 3, [], Counter(), text_chars=30_000)
     assert pdfcheck.page_range(summary) == (5, 3 * pdfcheck.MAX_PAGES_PER_DOCUMENT)
     assert pdfcheck.page_range(summary, min_pages=12)[0] == 12
+    assert pdfcheck.page_range(summary, max_pages=130) == (5, 130)  # a ceiling of paper
 
 
 def test_check_names_each_problem_with_its_allowed_value(
@@ -183,6 +184,14 @@ def test_captions_at_the_top_of_a_page_are_parted_from_their_figure() -> None:
         (2, "Figure 2 a caption whose figure is on the page before")
     ]
     assert pdfcheck.parted_captions(layout([(30.0, "Figures 2–5 draw it")])) == []
+    # given the book's captions, a sentence that begins with a reference is no caption
+    text = layout([(32.0, "Figure B.2 shows where"), (46.0, "x")], [(32.0, "Figure B.3 Mesh of")])
+    captions = pdfpages.figure_captions(
+        '<figcaption><p><span class="caption-number">Figure B.3 </span>Mesh of\n the plate'
+        "</p></figcaption><figcaption>Figure B.2 The plate</figcaption>"
+    )
+    assert captions == ["Figure B.3 Mesh of the plate", "Figure B.2 The plate"]
+    assert pdfpages.parted_captions(text, captions) == [(2, "Figure B.3 Mesh of")]
 
 
 def test_links_to_files_must_be_relative_and_name_a_file_beside_the_pdf(tmp_path: Path) -> None:
@@ -213,6 +222,20 @@ def test_file_links_are_made_relative_in_place(tmp_path: Path) -> None:
     assert len(out) == len(body) and b"/URI (data.zip) " in out and b"file:" not in out
     assert out.index(b"endobj") == body.index(b"endobj")  # offsets kept: the xref holds
     assert pdf.relative_file_links(folder / "b.pdf") == 0
+    live = f"{tmp_path.resolve().as_uri()}/html/generated/explorer.html".encode()
+    (folder / "c.pdf").write_bytes(body.replace(uri, live))
+    assert pdf.relative_file_links(folder / "c.pdf") == 1
+    assert b"/URI (../html/generated/explorer.html) " in (folder / "c.pdf").read_bytes()
+
+
+def test_a_live_page_link_opens_the_page_of_the_html_build(tmp_path: Path) -> None:
+    (tmp_path / "html").mkdir()
+    single = tmp_path / "singlehtml"
+    single.mkdir()
+    write_page(single / "index.html", '<a class="live-page" data-page="g/e.html" href="#">g</a>')
+    assert pdf.live_root(single) == tmp_path / "html"
+    text, _ = pdf.print_copy(single / "index.html", tmp_path, pdf.live_root(single))
+    assert f'href="{(tmp_path / "html" / "g" / "e.html").resolve().as_uri()}"' in text
 
 
 def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Path) -> None:
@@ -234,9 +257,19 @@ def test_print_copy_relinks_breaks_code_names_and_marks_wide_frames(tmp_path: Pa
     assert f'href="{(tmp_path / "pdf" / "d.zip").resolve().as_uri()}"' in text
     assert 'href="gone.zip"' in text  # no file in the build: left as it is
     assert "mechlib.<wbr>doe.<wbr>l2_<wbr>cd" in text
-    assert text.count("print-wide") == 1  # 12 columns of 12 characters; the other is narrow
+    # 12 columns of 12 characters: portrait in a narrow face; the other frame fits as it is
+    assert text.count("print-narrow") == 1 and "print-wide" not in text
     assert pdf.frame_chars(f"<table>{wide}</table>") == 12 * 12
     assert pdf.frame_chars("<table><tr><th>a long header</th></tr></table>") == 6 + 2
+    # a header breaks after its underscores; cells between words (a number stays whole)
+    assert (
+        pdf.frame_chars("<table><tr><th>tab_half_width</th><td>1 to 2</td></tr></table>") == 7 + 4
+    )
+    frame = '<table class="dataframe"><tr><th>tab_half_width</th></tr></table>'
+    assert pdf.header_breaks(frame).count("_<wbr>") == 2
+    widest = "<tr>" + "<td>123456.789</td>" * 14 + "</tr>"
+    marked = pdf.FRAME.sub(pdf.mark_wide, f'<table class="dataframe">{widest}</table>')
+    assert 'class="print-wide dataframe' in marked  # 168 characters: a landscape page
 
 
 def test_missing_tools_are_reported(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -276,7 +309,8 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
         bad / "index.html",
         '<h1>Broken page</h1><p>Raw \\(x^2\\) math.</p><img src="f.png" style="display:none">'
         '<p>Show code cell source</p><p style="font-size:5pt">small print</p>'
-        '<p style="break-before:page">Figure 1 a caption alone</p>',
+        '<figure style="break-before:page"><figcaption>Figure 1 a caption alone</figcaption>'
+        "</figure>",
     )
     pdf.build(good, tmp_path / "good.pdf")
     assert pdfcheck.pdf_pages(tmp_path / "good.pdf") == 2  # each page printed, then joined
@@ -291,6 +325,57 @@ def test_printed_book_passes_and_a_broken_one_fails(tmp_path: Path) -> None:
     assert problems[2].startswith("1 TeX math delimiters left untypeset (allowed 0)")
     assert problems[3] == "1 code-cell toggles printed ('Show code cell source'), allowed 0"
     assert problems[4].startswith("text at 5.00 pt on page 1 ('small print'), allowed ≥ 7.0")
-    assert problems[5].startswith("page 2 begins with a caption parted from its figure")
-    assert len(problems) == 6
+    # page 1 ends at a forced break inside the chapter; page 2, its tail, holds one line
+    assert problems[5].startswith("page 1 is near-blank: its text spans 18 %")
+    assert problems[6].startswith("page 2 is near-blank")
+    assert problems[7].startswith("page 2 begins with a caption parted from its figure")
+    assert len(problems) == 8
     assert pdf.main(["check", "--pdf", str(tmp_path / "bad.pdf"), "--html", str(bad)]) == 1
+
+
+def test_near_blank_pages_fail_unless_they_hold_a_figure_or_end_a_chapter() -> None:
+    full = [(60.0 + 14 * k, f"line {k} of a full page") for k in range(40)]
+    tail = [(60.0, "Provenance of the page"), (74.0, "commit abc"), (88.0, "Python 3.11")]
+    pages = pdfpages.parse_layout(
+        layout(full, tail, [(60.0, "Second chapter")], [(60.0, "x")], tail, [(60.0, "x")])
+    )
+    starts = pdfpages.book_page_starts(pages, ["First chapter", "Second chapter"])
+    assert starts == {3}  # the first title is on no page; a later repeat starts nothing
+    # 2: a chapter's last page with three lines (5.3 %); 3: one line; 4: figure; 5: mid-chapter
+    # at 5.3 %; 6: the book's last page with one line (1.5 %)
+    sparse = pdfpages.sparse_pages(pages, figure_pages={4}, starts=starts)
+    assert [n for n, _ in sparse] == [3, 5, 6]
+    assert pdfpages.page_span(pages, ["First chapter", "Second chapter"], "Second chapter") == 4
+    assert pdfpages.page_span(pages, ["Second chapter"], "Other") == 0
+    long_report = [[(60.0, "Reproduction report")], *[[(60.0, "rows")]] * 15]
+    problems = pdfpages.layout_problems(
+        layout(*long_report), set(range(1, 17)), set(), [], [], Path("."), ["Reproduction report"]
+    )
+    assert problems == ["the report prints on 16 pages, allowed ≤ 15 (one sitting)"]
+    listing = "page num type width height\n---\n   3  0 image 64 48\n   3  1 smask 64 48\n"
+    listing += "   5  2 image 2123 424\n"  # a box's shadow, rasterised: no figure of the book
+    assert pdfpages.image_pages(listing) == {3, 5}
+    assert pdfpages.image_pages(listing, {(64, 48)}) == {3}
+
+
+def test_a_word_broken_inside_a_narrow_column_is_found() -> None:
+    words = pdfpages.book_words("a better numerical efficiency; mechlib.doe.centered_l2, x-ray")
+    pages = pdfpages.parse_layout(
+        layout(
+            [(60.0, "better numeric"), (72.0, "al efficienc"), (84.0, "y (conditioning)")],
+            [(60.0, "mechlib.doe."), (72.0, "centered_l2"), (84.0, "a better"), (96.0, "x")],
+        )
+    )
+    assert pdfpages.broken_words(pages, words) == [(1, "numeric|al"), (1, "efficienc|y")]
+
+
+def test_a_live_page_needs_a_working_link_relative_to_the_pdf(tmp_path: Path) -> None:
+    html_page = '<p class="print-only">Live: <a class="live-page" data-page="g/e.html" href="#">'
+    live = pdfpages.live_pages(html_page)
+    assert live == ["g/e.html"]
+    (tmp_path / "html" / "g").mkdir(parents=True)
+    (tmp_path / "pdf").mkdir()
+    assert pdfpages.unlinked_live_pages(live, ["../html/g/e.html"], tmp_path / "pdf")
+    (tmp_path / "html" / "g" / "e.html").write_text("<p>live</p>")
+    assert pdfpages.unlinked_live_pages(live, ["../html/g/e.html"], tmp_path / "pdf") == []
+    assert pdfpages.unlinked_live_pages(live, [], tmp_path / "pdf")

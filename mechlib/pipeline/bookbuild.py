@@ -5,8 +5,10 @@
 * copies every executed notebook into ``book/chapters/`` with the presentation rules of
   :mod:`mechlib.pipeline.book.cells` applied (computation folded, bookkeeping removed, machine
   paths and library warnings neutralised, headings labelled);
-* writes ``book/report.md``, the reproduction report (:mod:`mechlib.pipeline.book.reportpage`), and
-  ``book/intro.md``, the landing page (:mod:`mechlib.pipeline.landing`), both from the records;
+* writes ``book/report.md``, the reproduction report of the thesis's values and claims, and
+  ``book/report_beyond.md``, its appendix of the rows beyond the thesis
+  (:mod:`mechlib.pipeline.book.reportpage`), and ``book/intro.md``, the landing page
+  (:mod:`mechlib.pipeline.landing`), all from the records;
 * draws the thesis's Figs 1 and 9 on their pages in ``book/generated/``
   (:mod:`mechlib.pipeline.book.methods`), and writes the data bundle there
   (:mod:`mechlib.pipeline.bundle`), which the landing page links;
@@ -43,22 +45,39 @@ html_theme.sidebar_secondary.remove: true
 # Reproduction report
 
 One row per thesis artefact and compared quantity, generated from the records that the chapters'
-notebooks wrote in this build (nothing on this page is typed by hand). Each row has a verdict
-category: *reproduced* (our independent computation agrees within the tolerance named after it:
-half a unit of the last printed digit, round-off, or a stated one), *consistent by construction*
-(we fitted to the published value or computed ours from it, so agreement is expected, not
-evidence), *diverges* (with the cause found in the chapter), *inconsistency inside the thesis*
-(published values contradict each other), *consistent inside the thesis* (published values set
-against each other agree), *not reproduced*, a claim of the thesis (with the verdict the claims
-registry gives it, quoted by id, from its parts that could fail; a part that cannot fail is shown
-and not counted, and a claim with no other part is *consistent by construction*), *our finding
-beyond the thesis* (never counted with the thesis's claims; its verdict quoted likewise),
-*computed* (nothing published to compare with) and *redrawn* (a diagram of the thesis's method). The
-difference is the largest one relative to the largest published value and, where the thesis
-printed a finite number of digits, in units of half its last digit. Each artefact links to
-the section of the chapter page that shows it.
+notebooks wrote in this build (nothing on this page is typed by hand). The rows that go beyond the
+thesis (our findings, and values with nothing published to compare) are counted below and listed
+in the [appendix](report_beyond.md), page by page. Figures of this book are numbered B.1, B.2, …;
+"Fig n" is the thesis's figure n. Each row has a verdict category: *reproduced* (our independent
+computation agrees within the tolerance named after it: half a unit of the last printed digit,
+round-off, or a stated one), *consistent by construction* (we fitted to the published value or
+computed ours from it, so agreement is expected, not evidence), *diverges* (with the cause found
+in the chapter), *inconsistency inside the thesis* (published values contradict each other),
+*consistent inside the thesis* (published values set against each other agree), *not
+reproduced*, a claim of the thesis (with the verdict the claims registry gives it, quoted by id,
+from its parts that could fail; a part that cannot fail is shown and not counted, and a claim with
+no other part is *consistent by construction*) and *redrawn* (a diagram of the thesis's method).
+The difference is the largest one relative to the largest published value and, where the thesis
+printed a finite number of digits, in units of half its last digit. A p-value below 1e-10 reads
+"p < 1e-10", a time has two significant digits. Each artefact links to the section of the
+chapter page that shows it.
 
 """
+APPENDIX_HEADER = """---
+html_theme.sidebar_secondary.remove: true
+---
+
+# Appendix: rows beyond the thesis
+
+The rows of the [reproduction report](report.md) that go beyond the thesis, page by page in the
+book's order: *our finding beyond the thesis* (a hypothesis or result of ours, with the verdict
+the claims registry gives it, quoted by id; never counted with the thesis's claims) and
+*computed* (a value the thesis does not publish). Generated from the records of this build, like
+the report. Each artefact links to the section of the page that shows it.
+
+"""
+#: the file of the appendix page, beside ``report.md``
+APPENDIX = "report_beyond"
 PAGE_SUFFIXES = (".md", ".ipynb", ".rst")
 _CHAPTER_CAPTION = re.compile(r"^Chapter\s+(\d+)\b")
 
@@ -200,15 +219,44 @@ def report_markdown(
     ]
     for chapter in chapters:
         lines += [f"## {chapter.caption}", ""]
-        if not rows[chapter.number]:
+        thesis = [r for r in rows[chapter.number] if not reportpage.is_beyond(r)]
+        if not thesis:
             lines += ["No rows were recorded for this chapter.", ""]
             continue
         lines += [
-            reportpage.chapter_table(
-                rows[chapter.number], chapter, lambda page, what: link(page, what, what)
-            ),
+            reportpage.chapter_table(thesis, chapter, lambda page, what: link(page, what, what)),
             "",
         ]
+        beyond = len(rows[chapter.number]) - len(thesis)
+        if beyond:
+            more = f"{beyond} more rows of this chapter go beyond the thesis"
+            lines += [f"{more}: see the [appendix]({APPENDIX}.md).", ""]
+    return "\n".join(lines)
+
+
+def appendix_markdown(
+    rows: dict[int, list[verdicts.ReportRow]], chapters: list[reportpage.Chapter], link: Linker
+) -> str:
+    """The appendix page: the rows beyond the thesis (:func:`reportpage.is_beyond`), under a
+    heading per thesis chapter one compact table per page of the book in reading order (its
+    heading links the page), each row in its page's order."""
+    lines = [APPENDIX_HEADER]
+    for chapter in chapters:
+        beyond = [r for r in rows[chapter.number] if reportpage.is_beyond(r)]
+        if beyond:
+            lines += [f"## {chapter.caption}", ""]
+        for page in dict.fromkeys([*chapter.pages, *(r.page for r in beyond)]):
+            mine = [r for r in beyond if r.page == page]
+            if not mine:
+                continue
+            sections = link.sections.get(page, [])
+            title = sections[0].title if sections else page
+            lines += [
+                f"### {{doc}}`{title} </chapters/{page}>`",
+                "",
+                reportpage.appendix_table(mine, link, title),
+                "",
+            ]
     return "\n".join(lines)
 
 
@@ -222,6 +270,7 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
     rows = report_rows(records, chapters)
     footer = provenance.block(made)
     _write(Path(book) / "report.md", report_markdown(rows, chapters, link) + footer)
+    _write(Path(book) / f"{APPENDIX}.md", appendix_markdown(rows, chapters, link) + footer)
     generated = Path(book) / "generated"
     generated.mkdir(parents=True, exist_ok=True)
     # every claim's verdict, judged again from the records and checked against the word its page

@@ -11,7 +11,7 @@
     break after their dots and underscores. The print layout itself is ``@media print`` in
     ``book/_static/book.css``.
 
-``python -m mechlib.pipeline.pdf check --pdf book.pdf --html DIR [--min-pages N]``
+``python -m mechlib.pipeline.pdf check --pdf book.pdf --html DIR [--min-pages N] [--max-pages N]``
     exit 1 when the PDF misses part of the book (see :mod:`mechlib.pipeline.pdfcheck`): each
     problem on a line naming the value found and the one allowed.
 
@@ -45,11 +45,19 @@ VIRTUAL_TIME_MS = 30000  # virtual time for the page's scripts (MathJax) before 
 PRINT_TIMEOUT_S = 300  # wall-clock limit of one page's print
 LINK = re.compile(r'(<a\s[^>]*?href=")([^"]*)(")')
 CODE = re.compile(r'(<span class="pre">)([^<]*)(</span>)')  # the words of inline code
+# a link of the printed page to a live page of the HTML build (explorerpage.LIVE_PAGE_CLASS)
+LIVE = re.compile(r'(<a class="live-page" data-page="([^"]*)" href=")#(")')
 FRAME = re.compile(r'<table [^>]*class="dataframe[^"]*"[^>]*>.*?</table>', re.DOTALL)
 CELL = re.compile(r"<t([hd])\b([^>]*)>(.*?)</t[hd]>", re.DOTALL)
 # a data frame wider than this many characters of its font (8 pt: a portrait page's width) is
-# printed on a landscape page (book.css: table.print-wide); header cells wrap between words
+# printed on a landscape page (book.css: table.print-wide); cells wrap between words (a
+# number stays whole), headers also after their underscores (header_breaks)
 PORTRAIT_CHARS = 98
+# up to this many it is printed portrait in a narrow face at 7 pt instead (table.print-narrow:
+# Liberation Sans Narrow, which Debian's chromium recommends, sets a digit in 0.46 em, 3.2 pt:
+# 160 characters take 512 of the 527 pt between the margins); a landscape page would force a
+# page break before and after the table and leave the page before it part empty
+NARROW_CHARS = 160
 
 
 find_browser = chromium.find_browser
@@ -91,28 +99,54 @@ def local_file(page: Path, href: str) -> Path | None:
 
 
 def frame_chars(table: str) -> int:
-    """Width of a data frame in characters: each column's longest cell (a header's longest word)
-    and two characters of padding (column-spanning header cells are left out)."""
+    """Width of a data frame in characters: each column's longest word (cells wrap between words
+    in print, a header's names also after their underscores) and two characters of padding
+    (column-spanning header cells are left out)."""
     widths: dict[int, int] = {}
     for row in re.findall(r"<tr\b.*?</tr>", table, re.DOTALL):
         for col, (kind, attrs, body) in enumerate(CELL.findall(row)):
             if "colspan" in attrs:
                 break
-            words = html.unescape(re.sub(r"<[^>]*>", " ", body)).split() or [""]
-            wide = max(map(len, words)) if kind == "h" else len(" ".join(words))
+            text = html.unescape(re.sub(r"<[^>]*>", " ", body))
+            if kind == "h":
+                text = text.replace("_", "_ ")
+            wide = max(map(len, text.split() or [""]))
             widths[col] = max(widths.get(col, 0), wide + 2)
     return sum(widths.values())
 
 
+def header_breaks(table: str) -> str:
+    """A data frame's table with ``<wbr>`` after each underscore of its header cells, so that a
+    column named ``tab_half_width`` may wrap there (:func:`frame_chars` counts it so)."""
+    return re.sub(
+        r"(<th\b[^>]*>)(.*?)(</th>)",
+        lambda m: m.group(1) + m.group(2).replace("_", "_<wbr>") + m.group(3),
+        table,
+        flags=re.DOTALL,
+    )
+
+
 def mark_wide(m: re.Match[str]) -> str:
-    """A data frame's table, its class ``print-wide`` added when it is wider than a page."""
-    table = m.group(0)
-    if frame_chars(table) <= PORTRAIT_CHARS:
+    """A data frame's table (:func:`header_breaks`), its class ``print-narrow`` added when it is
+    wider than a page at 8 pt (:data:`PORTRAIT_CHARS`), ``print-wide`` when wider than a page
+    in a narrow face at 7 pt (:data:`NARROW_CHARS`)."""
+    table = header_breaks(m.group(0))
+    chars = frame_chars(table)
+    if chars <= PORTRAIT_CHARS:
         return table
-    return table.replace('class="dataframe', 'class="print-wide dataframe', 1)
+    kind = "print-narrow" if chars <= NARROW_CHARS else "print-wide"
+    return table.replace('class="dataframe', f'class="{kind} dataframe', 1)
 
 
-def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
+def live_root(html_dir: Path) -> Path:
+    """The multi-page HTML build a printed live-page link opens: ``html/`` beside a
+    ``singlehtml`` build, else the build itself."""
+    html_dir = Path(html_dir)
+    beside = html_dir.parent / "html"
+    return beside if html_dir.name == "singlehtml" and beside.is_dir() else html_dir
+
+
+def print_copy(page: Path, pdf_dir: Path, live: Path | None = None) -> tuple[str, list[Path]]:
     """The HTML of ``page`` as printed, and the files its links need beside the PDF.
 
     Links to ``page`` itself (``intro.html#x``) become in-document anchors (``#x``), which
@@ -121,7 +155,9 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
     relative link; :func:`relative_file_links` makes it relative in the printed PDF);
     ``<wbr>`` after each dot and underscore of inline code lets a long name
     (``mechlib.doe.centered_l2``) break there in a narrow table column; a data frame wider than
-    a portrait page (:func:`frame_chars`) gets the class ``print-wide``.
+    a portrait page (:func:`frame_chars`) gets the class ``print-wide``; a link to a live page
+    (class ``live-page``, ``data-page`` naming it) opens that page of the HTML build ``live``
+    (an absolute ``file:`` URI, made relative to the PDF by :func:`relative_file_links`).
 
     Parameters
     ----------
@@ -129,6 +165,8 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
         The HTML page.
     pdf_dir : Path
         The folder of the PDF.
+    live : Path, optional
+        The multi-page HTML build (:func:`live_root`); live-page links stay as they are without.
 
     Returns
     -------
@@ -150,6 +188,11 @@ def print_copy(page: Path, pdf_dir: Path) -> tuple[str, list[Path]]:
         return f"{m.group(1)}{href}{m.group(3)}"
 
     text = LINK.sub(relink, page.read_text(encoding="utf-8"))
+    if live is not None:
+        text = LIVE.sub(
+            lambda m: m.group(1) + html.escape((live.resolve() / m.group(2)).as_uri()) + m.group(3),
+            text,
+        )
     text = CODE.sub(
         lambda m: m.group(1) + re.sub(r"([._])", r"\1<wbr>", m.group(2)) + m.group(3), text
     )
@@ -188,7 +231,7 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
     with tempfile.TemporaryDirectory() as tmp:
         parts = [Path(tmp) / f"{i:03d}.pdf" for i in range(len(pages))]
         for i, (page, part) in enumerate(zip(pages, parts, strict=True)):
-            text, files = print_copy(page, out.parent)
+            text, files = print_copy(page, out.parent, live_root(html_dir))
             for file in files:
                 shutil.copyfile(file, out.parent / file.name)
             copy = page.with_name(f".print-{page.name}")  # beside the page: its links resolve
@@ -207,25 +250,31 @@ def build(html_dir: Path, out: Path, browser: str | None = None) -> Path:
 
 def relative_file_links(pdf: Path) -> int:
     """Rewrite the PDF's links to files beside it (``/URI (file:///…/<dir>/name)``, all Chromium
-    writes) as links relative to the PDF (``/URI (name)``), so that they work wherever the PDF
-    and its files are moved together; return how many were rewritten.
+    writes) as links relative to the PDF (``/URI (name)``), and links to files in the folder
+    above it (the HTML build beside the PDF's folder: ``file:///…/_build/html/x.html``) as
+    ``/URI (../html/x.html)``, so that they work wherever the PDF and its files are moved
+    together; return how many were rewritten.
 
     The new link is padded with spaces (blanks between a dictionary's entries) to the old one's
     length, so that every object keeps its byte offset and the cross-reference table stays valid.
     """
     pdf = Path(pdf)
     data = pdf.read_bytes()
-    prefix = pdf.parent.resolve().as_uri().encode() + b"/"
+    here = pdf.parent.resolve()
+    count = 0
+    for folder, up, name in ((here, b"", rb"[^()/\\]+"), (here.parent, b"../", rb"[^()\\]+")):
+        prefix = folder.as_uri().encode() + b"/"
 
-    def relative(m: re.Match[bytes]) -> bytes:
-        old = m.group(0)
-        new = b"/URI (" + m.group(1) + b")"
-        return new + b" " * (len(old) - len(new))
+        def relative(m: re.Match[bytes], up: bytes = up) -> bytes:
+            old = m.group(0)
+            new = b"/URI (" + up + m.group(1) + b")"
+            return new + b" " * (len(old) - len(new))
 
-    pattern = re.compile(rb"/URI \(" + re.escape(prefix) + rb"([^()/\\]+)\)")
-    out, count = pattern.subn(relative, data)
+        pattern = re.compile(rb"/URI \(" + re.escape(prefix) + b"(" + name + rb")\)")
+        data, n = pattern.subn(relative, data)
+        count += n
     if count:
-        pdf.write_bytes(out)
+        pdf.write_bytes(data)
     return count
 
 
@@ -246,6 +295,7 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--pdf", type=Path, required=True)
     c.add_argument("--html", type=Path, required=True)
     c.add_argument("--min-pages", type=int, default=1)
+    c.add_argument("--max-pages", type=int, default=0, help="a ceiling of the page count")
     sub.add_parser(
         "tools", help="exit 3 (naming them) when programs the PDF route needs are missing"
     )
@@ -260,7 +310,7 @@ def main(argv: list[str] | None = None) -> int:
             out = build(args.html, args.out)
             print(f"PDF: {out.resolve()} ({pdf_pages(out)} pages)")
             return 0
-        problems = check(args.pdf, args.html, args.min_pages)
+        problems = check(args.pdf, args.html, args.min_pages, args.max_pages)
     except ToolMissing as missing:
         print(missing, file=sys.stderr)
         return 3

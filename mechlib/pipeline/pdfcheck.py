@@ -10,8 +10,10 @@
   as often as in the HTML — Chromium embeds an image at its own pixel size;
 * formulas left as TeX: ``\\(``, ``\\[`` or ``$$`` in ``pdftotext``'s output;
 * for paper: code-cell toggles ("Show code cell source"); text under 7 pt or math under 5 pt
-  (``MIN_FONT_PT``); a caption parted from its figure; a ``file:`` link to no file beside
-  the PDF, or a file the book links to (the data bundle) that the PDF does not link there.
+  (``MIN_FONT_PT``); a ``file:`` link to no file beside the PDF, or a file the book links to
+  (the data bundle) that the PDF does not link there; near-blank pages, words broken inside a
+  narrow column, captions parted from their figure and live pages with no link
+  (:mod:`mechlib.pipeline.pdfpages`).
 
 Reads the PDF with Debian's ``poppler-utils`` (``pdfinfo``, ``pdftotext``, ``pdfimages``,
 ``pdftohtml``).
@@ -20,6 +22,7 @@ Reads the PDF with Debian's ``poppler-utils`` (``pdfinfo``, ``pdftotext``, ``pdf
 from __future__ import annotations
 
 import base64
+import html
 import io
 import re
 import shutil
@@ -33,6 +36,9 @@ from urllib.parse import unquote, urlsplit
 
 from PIL import Image
 
+from mechlib.pipeline import pdfpages
+from mechlib.pipeline.pdfpages import parted_captions  # noqa: F401  (the check's, re-exported)
+
 MAX_CHARS_PER_PAGE = 6000  # an A4/Letter page of 10 pt text holds fewer characters than this
 MAX_PAGES_PER_DOCUMENT = 60  # a book page (chapter) printing longer than this is a runaway
 RASTER = (".png", ".jpg", ".jpeg", ".gif")
@@ -41,8 +47,6 @@ INLINE_MATH = re.compile(r"\\\(.*?\\\)")  # math in a title: typeset, so not com
 # the smallest text a printed page may hold; math's second-level scripts as in a 10 pt LaTeX book
 MIN_FONT_PT = {"text": 7.0, "math": 5.0}
 TOGGLE = re.compile(r"(?:Show|Hide) code cell (?:source|outputs?|content)")
-CAPTION = re.compile(r"Figure\s+\d+\b")  # numfig_format of book/_config.yml
-CAPTION_TOP_PT = 24.0  # a caption this close to the top margin has no figure above it
 ICON_FONTS = ("FontAwesome",)  # glyphs of icons, not text
 ZOOM = 3  # pdftohtml's largest zoom: font sizes in thirds of a point
 FONTSPEC = re.compile(r'<fontspec id="(\d+)" size="(-?\d+)" family="([^"]*)"')
@@ -188,6 +192,9 @@ class HtmlSummary:
     image_sizes: Counter[tuple[int, int]]
     text_chars: int
     files: list[str] = field(default_factory=list)  # names of the files the pages link to
+    words: set[str] = field(default_factory=set)  # every word of the pages' text
+    live: list[str] = field(default_factory=list)  # live pages a printed page links to
+    captions: list[str] = field(default_factory=list)  # the figure captions' text
 
 
 def summarize_html(html_dir: Path) -> HtmlSummary:
@@ -197,20 +204,28 @@ def summarize_html(html_dir: Path) -> HtmlSummary:
     files: list[str] = []
     chars = documents = 0
     pages = page_order(html_dir)
+    words: set[str] = set()
+    live: list[str] = []
+    captions: list[str] = []
     for page in pages:
-        info = parse_page(page.read_text(encoding="utf-8"))
+        text = page.read_text(encoding="utf-8")
+        info = parse_page(text)
+        words |= pdfpages.book_words(html.unescape(re.sub(r"<[^>]*>", " ", text)))
+        live += pdfpages.live_pages(text)
+        captions += pdfpages.figure_captions(text)
         titles += [t for t in info.titles if t not in titles]
         files += [n for n in map(linked_file, info.files) if n and n not in files]
         chars += info.text_chars
         documents += info.documents + 1  # singlehtml: the root page has no marker
         sizes.update(s for s in (image_size(page, src) for src in info.images) if s)
-    return HtmlSummary(len(pages), documents, titles, sizes, chars, files)
+    return HtmlSummary(len(pages), documents, titles, sizes, chars, files, words, live, captions)
 
 
-def page_range(summary: HtmlSummary, min_pages: int = 1) -> tuple[int, int]:
-    """Allowed page count ``[low, high]`` of the book's PDF."""
+def page_range(summary: HtmlSummary, min_pages: int = 1, max_pages: int = 0) -> tuple[int, int]:
+    """Allowed page count ``[low, high]`` of the book's PDF (``max_pages``: a ceiling, 0 none)."""
     low = max(min_pages, 1, summary.text_chars // MAX_CHARS_PER_PAGE)
-    return low, max(low, MAX_PAGES_PER_DOCUMENT * summary.documents)
+    high = MAX_PAGES_PER_DOCUMENT * summary.documents
+    return low, max(low, min(high, max_pages) if max_pages else high)
 
 
 def parse_pdfimages_list(listing: str) -> Counter[tuple[int, int]]:
@@ -276,28 +291,6 @@ def smallest_text(xml: str) -> dict[str, tuple[float, int, str]]:
     return smallest
 
 
-def parted_captions(layout: str) -> list[tuple[int, str]]:
-    """Page and first line of each caption parted from its figure (``pdftotext -bbox-layout``).
-
-    A caption follows its figure: one that is a page's first line, within ``CAPTION_TOP_PT``
-    of the highest first line of any page, has its figure on the page before (lines above
-    the page, text hidden off it, are left out).
-    """
-    firsts = []
-    for page in layout.split("<page ")[1:]:
-        lines = [
-            (float(y), " ".join(re.findall(r"<word [^>]*>([^<]*)</word>", body)))
-            for y, body in re.findall(r'<line [^>]*yMin="([-\d.]+)"[^>]*>(.*?)</line>', page, re.S)
-        ]
-        firsts.append(min((ln for ln in lines if ln[1] and ln[0] >= 0), default=None))
-    top = min((f[0] for f in firsts if f), default=0.0)
-    return [
-        (n, f[1])
-        for n, f in enumerate(firsts, start=1)
-        if f and f[0] <= top + CAPTION_TOP_PT and CAPTION.match(f[1])
-    ]
-
-
 def broken_links(hrefs: list[str], pdf_dir: Path, files: list[str]) -> list[str]:
     """One line per link to a file that is not a relative link to a file beside the PDF (an
     absolute ``file:`` link breaks when the PDF moves), or a linked file not linked."""
@@ -340,7 +333,7 @@ def pdf_pages(pdf: Path) -> int:
     return int(found.group(1))
 
 
-def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
+def check(pdf: Path, html_dir: Path, min_pages: int = 1, max_pages: int = 0) -> list[str]:
     """Problems of the book's PDF against its HTML (empty when it is complete).
 
     Parameters
@@ -351,6 +344,8 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
         The HTML build it was printed from (``html`` or ``singlehtml``).
     min_pages : int
         A lower bound of the page count on top of the one the text size gives.
+    max_pages : int
+        A ceiling of the page count (0: only the runaway bound per document).
 
     Returns
     -------
@@ -360,18 +355,19 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
     summary = summarize_html(html_dir)
     problems = []
     pages = pdf_pages(pdf)
-    low, high = page_range(summary, min_pages)
+    low, high = page_range(summary, min_pages, max_pages)
     if not low <= pages <= high:
         problems.append(
             f"{pages} pages, allowed [{low}, {high}] ({summary.text_chars} characters of text "
             f"at ≤ {MAX_CHARS_PER_PAGE} a page; ≤ {MAX_PAGES_PER_DOCUMENT} pages per document, "
-            f"{summary.documents} documents)"
+            f"{summary.documents} documents; ceiling {max_pages or 'none'})"
         )
     text = run_tool(["pdftotext", "-enc", "UTF-8", str(pdf), "-"])
     problems += [
         f"page title missing from the PDF text: {t!r}" for t in missing_titles(summary.titles, text)
     ]
-    pdf_sizes = parse_pdfimages_list(run_tool(["pdfimages", "-list", str(pdf)]))
+    listing = run_tool(["pdfimages", "-list", str(pdf)])
+    pdf_sizes = parse_pdfimages_list(listing)
     problems += missing_images(summary.image_sizes, pdf_sizes)
     raw = raw_math(text)
     if raw:
@@ -388,9 +384,16 @@ def check(pdf: Path, html_dir: Path, min_pages: int = 1) -> list[str]:
         if pt < MIN_FONT_PT[kind]
     ]
     layout = run_tool(["pdftotext", "-bbox-layout", "-enc", "UTF-8", str(pdf), "-"])
-    problems += [
-        f"page {n} begins with a caption parted from its figure ({line[:40]!r}), allowed: none"
-        for n, line in parted_captions(layout)
-    ]
-    hrefs = re.findall(r'<a href="([^"]*)"', xml)
+    hrefs = [html.unescape(h) for h in re.findall(r'<a href="([^"]*)"', xml)]
+    figures = pdfpages.image_pages(listing, set(summary.image_sizes))
+    problems += pdfpages.layout_problems(
+        layout,
+        figures,
+        summary.words,
+        summary.live,
+        hrefs,
+        Path(pdf).parent,
+        summary.titles,
+        summary.captions,
+    )
     return problems + broken_links(hrefs, Path(pdf).parent, summary.files)

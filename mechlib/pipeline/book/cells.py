@@ -6,6 +6,10 @@ rule, what each cell shows:
 * the ``parameters`` cell stays visible: readers change it; papermill's injected cell (the values
   a chapter takes from another's record) is merged into it, each injected value replacing its
   default on the same line, so the page shows one parameters cell with the values it ran with;
+  the print shows a compact table of them instead (:mod:`mechlib.pipeline.book.printparams`);
+* a p-value below 1e-10, quoted by the text from a glued value or shown in a data frame's
+  p-value row or column, reads "p < 1e-10", and a data frame's times have two significant
+  digits (:mod:`mechlib.pipeline.book.pvalues`);
 * formatter directives (``# fmt: off``, ``# fmt: skip``) are dropped from every cell shown;
 * a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.text(...)``,
   ``rec.save()``, ``glue(..., display=False)``, prints of what those return, and the named
@@ -26,7 +30,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from mechlib.pipeline.book import figures
+from mechlib.pipeline.book import figures, printparams, pvalues
 from mechlib.reporting.artefacts import Section, parse
 
 #: Tags that show a reader-facing cell as written (papermill's parameter cells).
@@ -260,6 +264,7 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
     """
     nb = copy.deepcopy(nb)
     cells = merge_injected(nb.get("cells", []))
+    pvalues.floor_glued_p_values(cells)
     recorders = recorder_names(
         "".join(c.get("source", "")) for c in cells if c.get("cell_type") == "code"
     )
@@ -278,6 +283,10 @@ def prepare_notebook(nb: dict[str, Any], name: str, repo_root: Path) -> tuple[di
         cell["source"] = strip_formatter_directives("".join(cell.get("source", "")))
         cell.setdefault("metadata", {})["tags"] = cell_tags(cell, recorders)
         cell["outputs"] = clean_outputs(cell.get("outputs", []), repo_root)
+        pvalues.print_output_frames(cell["outputs"])
+        if "parameters" in cell["metadata"]["tags"]:
+            printed = printparams.print_cell(cell)
+            out_cells += [printed] if printed else []
         figure = figures.figure_metadata(name, cell)
         if figure is not None:
             cell["metadata"]["mystnb"] = figure

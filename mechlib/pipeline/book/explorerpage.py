@@ -20,6 +20,14 @@ from mechlib.pipeline.book import explorerdraw
 SLIDER_STEPS = 100
 """Slider positions per force range (a step of amplitude / 100)."""
 ROOT_ID = "mx"
+#: the printed page's link to the live page (mechlib/pipeline/pdf.py points it at the page of the
+#: HTML build beside the PDF's folder): its class, the page, and the sentence before it
+LIVE_PAGE_CLASS = "live-page"
+LIVE_PAGE = "generated/explorer.html"
+LIVE_PAGE_TEXT = (
+    "On paper this page shows the preset pose below; the sliders and the inverse run in the HTML "
+    "book, page"
+)
 """The id of the interactive part's element (``explorer.js`` looks for it)."""
 
 
@@ -194,6 +202,11 @@ def page_markdown(
             "",
             "```{raw} html",
             f":file: {widget}",
+            "```",
+            "",
+            "```{raw} html",
+            f'<p class="print-only">{LIVE_PAGE_TEXT} <a class="{LIVE_PAGE_CLASS}" '
+            f'data-page="{LIVE_PAGE}" href="#">{LIVE_PAGE}</a>.</p>',
             "```",
             "",
             "## A preset pose",
