@@ -108,6 +108,8 @@ class _LeanOptimiser:
 
     def __call__(self, obj_func, initial_theta: np.ndarray, bounds: np.ndarray):
         gp = self.regressor
+        if gp is None:
+            raise RuntimeError("the optimiser's regressor must be set before fitting, got None")
         objective = NegLogLikelihood(gp.X_train_, gp.y_train_, gp.alpha)
         return _optimiser(objective, initial_theta, bounds)
 
@@ -178,6 +180,7 @@ def fit_gp(
         with one_thread(), warnings.catch_warnings():  # an optimum on a bound: expected
             warnings.filterwarnings("ignore", category=ConvergenceWarning)
             models.append(gp.fit(u, target[:, j]))
+        optimiser.regressor = None  # no cycle kept in the fitted model
     return GaussianProcess(trend, amplitude, s, b0, models)
 
 
