@@ -20,6 +20,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from mechlib.hexflex.campaign import store
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
 from mechlib.paths import REPO_ROOT
@@ -154,6 +156,21 @@ def _clean(args: argparse.Namespace) -> int:
     return 0
 
 
+def _rekeyed_kept(folder: Path, keys: set[str]) -> dict | None:
+    """The ``rekeyed`` record of the store a pack replaces, with how many of its entries the new
+    store keeps (``kept``): a repack that adds runs leaves the re-keyed ones' provenance."""
+    try:
+        old = store.read_manifest(folder)
+        rekeyed = old.get("rekeyed")
+        if not rekeyed:
+            return None
+        with np.load(folder / store.RESULTS) as data:
+            kept = len(keys & set(data["keys"].tolist()))
+    except (OSError, store.StoreError, KeyError, ValueError):
+        return None
+    return {**rekeyed, "kept": kept} if kept else None
+
+
 def _pack(args: argparse.Namespace) -> int:
     head = clean_commit(args.commit)
     entries = store.entries_from_cache(args.log, args.cache)
@@ -167,6 +184,9 @@ def _pack(args: argparse.Namespace) -> int:
         # whether those seconds solved every run (an empty FE cache) or resumed from a cache
         "from_empty": args.from_empty,
     }
+    rekeyed = _rekeyed_kept(Path(args.store), {e.key for e in entries})
+    if rekeyed:
+        provenance["rekeyed"] = rekeyed
     folder = store.write_store(entries, args.store, provenance)
     m = store.read_manifest(folder)
     print(f"store: {len(entries)} FE tasks ({m['runs']}) written to {folder}")
