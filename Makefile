@@ -220,7 +220,7 @@ determinism-check: $(STAMP)
 STORE_LOG  := $(BUILD)/store-tasks.jsonl
 # seeded once per store (again when store/ changes or the cache is removed); `make store-seed`
 # seeds again whatever the stamp says
-$(STORE_SEEDED): $(wildcard $(STORE)/manifest.json $(STORE)/results.npz) | $(STAMP)
+$(STORE_SEEDED): $(wildcard $(STORE)/manifest.json $(STORE)/results.npz $(STORE)/snapshots.npz) | $(STAMP)
 	$(if $(NO_STORE_SEED),@echo "store: not read (make store FROM_EMPTY=1 solves every FE task)",\
 	  $(PIPELINE) store seed --store $(STORE) --cache $(FE_CACHE) && touch $@)
 

@@ -39,8 +39,8 @@ def test_every_task_a_build_runs_is_logged_and_packed(built, tmp_path) -> None:
     assert [e.kind for e in entries] == ["nonlinear", "nonlinear", "linear"]
     folder = st.write_store(entries, tmp_path / "store", {"commit": "abc"})
     manifest, back = st.read_store(folder)
-    assert manifest["entries"] == {"linear": 1, "nonlinear": 2, "size": 0}
-    assert manifest["runs"] == {"linear": 2, "nonlinear": 2, "size": 0}
+    assert manifest["entries"] == {"linear": 1, "nonlinear": 2, "size": 0, "state": 0}
+    assert manifest["runs"] == {"linear": 2, "nonlinear": 2, "size": 0, "state": 0}
     assert manifest["commit"] == "abc"
     for a, b in zip(entries, back, strict=True):
         assert (a.key, a.spec, a.kind, a.steps) == (b.key, b.spec, b.kind, b.steps)

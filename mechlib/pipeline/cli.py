@@ -95,7 +95,7 @@ def _cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -
     if not any(e["kind"] == "nonlinear" for e in read):
         print("determinism: the re-run read no non-linear FE task from the cache to recompute")
         return True
-    entries = {f"{e.key}.npy": e.results for e in read_store(store)[1]} if store else {}
+    entries = {e.file: e.results for e in read_store(store)[1]} if store else {}
     cache = rerun_dir / "fe-cache"
     stored = {e["file"] for e in read if e["file"] in entries}
     edited = sorted(f for f in stored if not np.array_equal(np.load(cache / f), entries[f]))

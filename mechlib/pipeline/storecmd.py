@@ -1,12 +1,16 @@
 """``python -m mechlib.pipeline store …``: the FE results store of the repository (``store/``).
 
-=======  ==========================================================================================
-seed     write the store's tasks into a build's FE cache (refuses a stale, edited or corrupt store)
-clean    refuse a work tree with uncommitted changes (``make store`` starts with it)
-pack     collect every FE task a build logged into the store, with its provenance (``make store``)
-check    recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
-rekey    re-key a format-3 store computed by the current code to format 4 (no run solved)
-=======  ==========================================================================================
+=============  ====================================================================================
+seed           write the store's tasks into a build's FE cache (refuses a stale, edited or corrupt
+               store)
+clean          refuse a work tree with uncommitted changes (``make store`` starts with it)
+pack           collect every FE task a build logged into the store, with its provenance
+               (``make store``)
+check          recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
+rekey          re-key a format-3 store computed by the current code to format 4 (no run solved)
+add-snapshots  add the meta-model page's reduced-order-model snapshots (full fields) to the store,
+               read from the build's FE cache or solved, its runs kept byte for byte
+=============  ====================================================================================
 
 Each refusal is one line naming the thing and what to do, with exit code 2.
 """
@@ -24,11 +28,13 @@ import numpy as np
 
 from mechlib.hexflex.campaign import store
 from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
-from mechlib.paths import REPO_ROOT
+from mechlib.paths import DEFAULT_BUILD, REPO_ROOT, STORE_DIR
 from mechlib.pipeline.provenance import UNKNOWN, commit, cpu_model
 
 #: non-linear and linear tasks of the store that ``make test`` recomputes cold
 COLD_NONLINEAR, COLD_LINEAR = 14, 2
+#: snapshot (``STATE``) tasks of the store that ``make test`` recomputes cold: one full field
+COLD_STATE = 1
 
 
 #: the pages whose finite-element results the store holds (what the landing page says it feeds)
@@ -198,7 +204,7 @@ def _check(args: argparse.Namespace) -> int:
 
     _, entries = store.read_store(args.store)
     seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed
-    per_kind = {"nonlinear": args.nonlinear, "linear": args.linear}
+    per_kind = {"nonlinear": args.nonlinear, "linear": args.linear, "state": args.state}
     checks = check_entries(entries, per_kind, seed, workers=args.workers)
     for c in checks:
         verdict = "agrees" if c.agrees else "DIFFERS"
@@ -213,7 +219,7 @@ def _check(args: argparse.Namespace) -> int:
     print(
         f"store: {len(checks) - len(bad)} of {len(checks)} sampled tasks (seed {seed}, of "
         f"{len(entries)} stored) recomputed cold agree within {AGREE_RTOL:g} of each task's "
-        f"largest pose component"
+        f"largest pose (or snapshot field) component"
     )
     return 1 if bad else 0
 
@@ -227,6 +233,21 @@ def _rekey(args: argparse.Namespace) -> int:
         f"store: {n} entries ({manifest['runs']}) of {args.store} re-keyed from format 3 "
         f"(byte fingerprints {old}, the current code's) to format {manifest['version']} "
         f"(fingerprints {manifest['fingerprints']}); results unchanged, sha256 {manifest['sha256']}"
+    )
+    return 0
+
+
+def _add_snapshots(args: argparse.Namespace) -> int:
+    from mechlib.pipeline.storesnapshots import add_snapshots
+
+    head = clean_commit()
+    m, solved = add_snapshots(args.store, args.records, args.cache, head, args.workers)
+    size = (args.store / store.SNAPSHOTS).stat().st_size / 1e6
+    print(
+        f"store: {m['entries']['state']} snapshot fields in {args.store / store.SNAPSHOTS} "
+        f"({size:.1f} MB; {solved} solved, the others read from {args.cache}, in "
+        f"{m['snapshots']['seconds']:g} s at commit {head}); runs unchanged, sha256 "
+        f"{m[store.SNAPSHOTS_SHA]}"
     )
     return 0
 
@@ -256,12 +277,19 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--store", type=Path, required=True)
     check.add_argument("--nonlinear", type=int, default=COLD_NONLINEAR)
     check.add_argument("--linear", type=int, default=COLD_LINEAR)
+    check.add_argument("--state", type=int, default=COLD_STATE, help="snapshot fields")
     check.add_argument("--seed", type=int, default=None, help="default: from the commit")
     check.add_argument("--workers", type=int, default=2, help="processes recomputing it")
     check.set_defaults(func=_check)
     rekey = sub.add_parser("rekey", help="a format-3 store of the current code, re-keyed")
     rekey.add_argument("--store", type=Path, required=True)
     rekey.set_defaults(func=_rekey)
+    snaps = sub.add_parser("add-snapshots", help="the ROM's snapshot fields into the store")
+    snaps.add_argument("--store", type=Path, default=STORE_DIR)
+    snaps.add_argument("--records", type=Path, default=DEFAULT_BUILD / "records")
+    snaps.add_argument("--cache", type=Path, default=DEFAULT_BUILD / "cache" / "experiments")
+    snaps.add_argument("--workers", type=int, default=1, help="processes solving the fields")
+    snaps.set_defaults(func=_add_snapshots)
     return top
 
 

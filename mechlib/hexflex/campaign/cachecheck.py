@@ -6,8 +6,9 @@ logs every hit (``$MECHLIB_FE_LOG``, written by
 :func:`mechlib.hexflex.campaign.experiments.run_experiments`);
 :func:`check_sample` then recomputes a seeded sample of the logged tasks in this process and
 compares each with its cached file (agreement within ``AGREE_RTOL``). The records check every
-seeded stream and every computation downstream of the FE solves; the sample checks the solves
-(the displacement fields of :mod:`mechlib.hexflex.rom.snapshots` are not logged, nor sampled).
+seeded stream and every computation downstream of the FE solves; the sample checks the solves.
+:func:`check_entries` recomputes a sample of a results store's tasks alike, the displacement
+fields of its ``STATE`` tasks (:mod:`mechlib.hexflex.rom.snapshots`) among them.
 """
 
 from __future__ import annotations
@@ -21,8 +22,8 @@ import numpy as np
 from mechlib.compliant.spec import MechanismSpec
 from mechlib.hexflex.campaign.executors import worker_pool
 from mechlib.hexflex.campaign.experiments import (
-    KINDS,
     POSE_COLUMNS,
+    TASK_KINDS,
     ModelSpec,
     release_models,
     task_poses,
@@ -41,15 +42,16 @@ SAMPLE_SEED = 2010
 #: on the identified model: about 1e-13 of the largest component), and more between processors
 #: whose BLAS runs other kernels (measured with OpenBLAS's Sandybridge kernels against the
 #: Haswell ones that stored them, 32 sampled tasks: non-linear runs up to 1e-8 µm absolute,
-#: linear blocks of the thin members up to 1.4e-8 of their largest component)
+#: linear blocks of the thin members up to 1.4e-8 of their largest component). A ``STATE`` task's
+#: displacement field is held to the same share of its largest |component|.
 AGREE_RTOL = 1e-7
 
 
 @dataclass(frozen=True)
 class CacheCheck:
     """One cached task recomputed: its cache file, kind, rows, whether the fresh result is
-    bit-identical, whether it agrees within ``AGREE_RTOL``, and ``max_abs_diff`` [µm, µrad],
-    the largest difference (0 when identical)."""
+    bit-identical, whether it agrees within ``AGREE_RTOL``, and ``max_abs_diff`` [µm, µrad;
+    mm for a ``STATE`` task's field], the largest difference (0 when identical)."""
 
     file: str
     kind: str
@@ -57,7 +59,8 @@ class CacheCheck:
     identical: bool
     agrees: bool
     max_abs_diff: float
-    #: the row of the cached and of the recomputed poses where they differ most
+    #: the row of the cached and of the recomputed poses where they differ most (of a field: the
+    #: component that differs most)
     stored: tuple[float, ...] = ()
     fresh: tuple[float, ...] = ()
 
@@ -114,7 +117,7 @@ def sample(entries: list[dict], per_kind: dict[str, int], seed: int = SAMPLE_SEE
     """
     rng = np.random.default_rng(seed)
     chosen: list[int] = []
-    for kind in KINDS:
+    for kind in TASK_KINDS:
         n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
         # by file name: the same tasks give the same sample whatever order the log has them in
         # (two chapters at a time append to it concurrently)
@@ -164,7 +167,7 @@ def sample_uniform(entries: list, per_kind: dict[str, int], seed: int) -> list:
     """
     rng = np.random.default_rng(seed)
     chosen: list = []
-    for kind in KINDS:
+    for kind in TASK_KINDS:
         n = check_int(f"per_kind[{kind!r}]", per_kind.get(kind, 0), low=0, high=10_000)
         pool = [e for e in entries if e.kind == kind]
         for fam in sorted({family(e.spec) for e in pool}) if n else ():
@@ -226,7 +229,7 @@ def check_entries(
     """
     picked = sample_uniform(entries, per_kind, seed)
     return _recompute(
-        [(f"{e.key}.npy", e.spec, e.kind, e.forces, e.steps, e.results) for e in picked], workers
+        [(e.file, e.spec, e.kind, e.forces, e.steps, e.results) for e in picked], workers
     )
 
 
@@ -264,13 +267,15 @@ def _recompute_models(tasks: list[tuple]) -> list[CacheCheck]:
                 out.append(CacheCheck(file, kind, len(forces), False, False, np.inf))
                 continue
             # the poses are compared; the solve statistics after them may differ with round-off
-            # (a correction more or less) while the converged poses agree
-            fresh, cached = fresh[:, : POSE_COLUMNS[kind]], cached[:, : POSE_COLUMNS[kind]]
+            # (a correction more or less) while the converged poses agree. A field: all of it
+            cols = slice(0, POSE_COLUMNS.get(kind))
+            fresh, cached = fresh[:, cols], cached[:, cols]
             same = np.array_equal(fresh, cached)
             diff = np.abs(fresh - cached)
-            worst = int(np.argmax(diff.max(axis=1)))
+            worst = np.unravel_index(int(np.argmax(diff)), diff.shape)
             agrees = float(diff.max()) <= AGREE_RTOL * float(np.abs(cached).max())
-            rows = (tuple(cached[worst, :6].tolist()), tuple(fresh[worst, :6].tolist()))
+            shown = slice(0, 6) if kind in POSE_COLUMNS else slice(worst[1], worst[1] + 1)
+            rows = (tuple(cached[worst[0], shown].tolist()), tuple(fresh[worst[0], shown].tolist()))
             out.append(CacheCheck(file, kind, len(forces), same, agrees, float(diff.max()), *rows))
         release_models()
     return out

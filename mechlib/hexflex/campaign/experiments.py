@@ -31,6 +31,7 @@ from mechlib.hexflex.campaign.executors import InProcessExecutor, worker_count
 from mechlib.hexflex.campaign.spec import MESHES as MESHES  # re-exported: notebooks check it
 from mechlib.hexflex.campaign.spec import ModelSpec
 from mechlib.hexflex.campaign.spec import check_forces_design as check_forces_design
+from mechlib.hexflex.campaign.taskcache import STATE as STATE
 from mechlib.hexflex.campaign.taskcache import (
     cache_result,
     cached_result,
@@ -45,6 +46,10 @@ from mechlib.progress import Progress
 #: task kinds: linear runs, non-linear runs, and the model's size (its free DOFs, one row of
 #: zero forces), cached like the runs so that a build reading the cache builds no model for it
 KINDS: tuple[str, ...] = ("linear", "nonlinear", "size")
+#: every kind of task the FE cache, the results store and its cold checks hold: those of
+#: :func:`run_experiments`, and ``STATE``, a non-linear run's converged displacement field (a
+#: reduced-order model's snapshot, :func:`mechlib.hexflex.rom.snapshots.nonlinear_states`)
+TASK_KINDS: tuple[str, ...] = (*KINDS, STATE)
 #: Pose conventions a non-linear run returns (:mod:`mechlib.fe.finite_pose`): the
 #: small-rotation fit of the stage nodes (the linear model's and the tables' pose), and the exact
 #: rigid registration as a rotation vector or as intrinsic Euler XYZ angles. A linear run has
@@ -146,6 +151,8 @@ def _solve(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     if kind == "size":
         return np.full((len(forces), 1), float(model_for(spec).n_dofs))
     solver = solver_for(spec)
+    if kind == STATE:  # the fields themselves, (rows, n_dofs) [mm]
+        return np.array([solver.solve(f, steps=steps, method=spec.SOLVE_METHOD)[0] for f in forces])
     model = solver.model
     rows = []
     for f in forces:
@@ -160,9 +167,11 @@ def _solve(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
 
 
 def task_poses(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    """What one task of :func:`run_experiments` computes and caches, computed now: per row of
-    ``forces``, ``RESULT_COLUMNS[kind]`` columns (the poses; a non-linear run's ``SOLVE_STATS``
-    after them) — for checking a cached result against a fresh one."""
+    """What one task of ``kind`` (:data:`TASK_KINDS`) computes and caches, computed now: per row
+    of ``forces``, ``RESULT_COLUMNS[kind]`` columns (the poses; a non-linear run's
+    ``SOLVE_STATS`` after them), or for a ``STATE`` task the converged displacement field
+    (n_dofs columns) [mm] — what a cache miss runs, and what a cold check compares with a cached
+    result."""
     return _task(spec, kind, np.asarray(forces, dtype=float), steps)
 
 

@@ -4,15 +4,20 @@ The FE cache (:mod:`mechlib.hexflex.campaign.experiments`) holds one ``<key>.npy
 where the key digests the model specification, the kind of analysis, the load steps, the forces and
 the sources that define a result
 (:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`).
-A store is a folder with two files: ``results.npz`` (every task's inputs and poses, a few bytes
-a run; no displacement field) and ``manifest.json`` (format version, the code fingerprint, a
-SHA-256 of ``results.npz``, counts, and what the build wing adds: commit, date, processor,
-time). :func:`seed_cache` writes its tasks into an FE cache, where a build reads them as it reads
-any cached task; a task missing from the store is computed and cached as before.
+A store is a folder with two or three files: ``results.npz`` (every task's inputs and poses, a
+few bytes a run; no displacement field), ``snapshots.npz`` when it holds ``STATE`` tasks (the
+converged displacement fields a reduced-order model is built from,
+:mod:`mechlib.hexflex.rom.snapshots`: 8 bytes a DOF) and ``manifest.json`` (format version, the
+code fingerprint, a SHA-256 of each array file, counts, and what the build wing adds: commit,
+date, processor, time); :mod:`~mechlib.hexflex.campaign.storefiles` lays out the array files.
+:func:`seed_cache` writes its tasks into an FE cache, where a build reads them as it reads any
+cached task; a task missing from the store is computed and cached as before.
+:func:`add_states` adds ``STATE`` tasks to a store without regenerating its runs.
 
 What is refused, each with one line naming the thing and what to do (:class:`StoreError`): an
-unknown format version, a malformed manifest, a ``results.npz`` whose checksum differs from the
-manifest's, an entry whose key is not the digest of its own inputs (an edited force or
+unknown format version, a malformed manifest, a ``results.npz`` or ``snapshots.npz`` whose
+checksum differs from the manifest's (or a ``snapshots.npz`` it does not list), tasks other than
+it counts, an entry whose key is not the digest of its own inputs (an edited force or
 specification) or whose forces lie outside the model's force bound, and a store computed by
 other FE code than the current one. Writing is atomic: a new store replaces the old one whole,
 or not at all.
@@ -29,20 +34,32 @@ an older format is refused by its version.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import shutil
 import tempfile
-from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign.experiments import KINDS, RESULT_COLUMNS
-from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
+from mechlib.hexflex.campaign.experiments import STATE
+from mechlib.hexflex.campaign.storefiles import (
+    REGENERATE,
+    RESULTS,
+    SNAPSHOTS_SHA,
+    Entry,
+    StoreError,
+    counts,
+    read_arrays,
+    replace,
+    staging,
+    write_arrays,
+    write_states,
+)
+from mechlib.hexflex.campaign.storefiles import SNAPSHOTS as SNAPSHOTS  # re-exported
+from mechlib.hexflex.campaign.taskcache import cache_file, model_code_fingerprint, task_key
 from mechlib.hexflex.fe.model import MAX_FORCE_N
 
 #: Format of ``manifest.json`` and ``results.npz`` this code writes and reads (:data:`READS`);
@@ -66,32 +83,8 @@ def fingerprints() -> dict[str, str]:
 
 
 MANIFEST = "manifest.json"
-RESULTS = "results.npz"
 #: manifest fields every store has (the build wing may add more: commit, processor, timings)
 REQUIRED = ("version", "fingerprint", "fingerprints", "sha256", "entries", "runs")
-#: command that regenerates the store, named by every refusal of a stale store
-REGENERATE = "make store"
-
-
-class StoreError(RuntimeError):
-    """A store that cannot be used as it is (the message says which part and what to do)."""
-
-
-@dataclass(frozen=True)
-class Entry:
-    """One FE task: its cache key, model specification (:meth:`ModelSpec.key` text, or a
-    compliant layout's :meth:`MechanismSpec.key`), kind, load steps, forces (rows, 6) [N] (a
-    layout's loads: rows, its ports, in their units) and results (rows,
-    ``RESULT_COLUMNS[kind]``): the poses [µm, µrad] (6 of a linear task, 18 of a non-linear
-    one: three conventions) and a non-linear run's solve statistics after them
-    (``SOLVE_STATS``: corrections, factorisations, restarts, final relative residual)."""
-
-    key: str
-    spec: str
-    kind: str
-    steps: int
-    forces: np.ndarray
-    results: np.ndarray
 
 
 def entries_from_cache(log: Path, cache_dir: Path) -> list[Entry]:
@@ -111,11 +104,11 @@ def entries_from_cache(log: Path, cache_dir: Path) -> list[Entry]:
             continue
         try:
             e = json.loads(line)
-            key = e["file"].removesuffix(".npy")
+            key = e["file"].split(".", 1)[0]
             task = (e["spec"], e["kind"], int(e["steps"]), np.array(e["forces"], dtype=float))
-        except (ValueError, KeyError, TypeError) as err:
+        except (ValueError, KeyError, TypeError, AttributeError) as err:
             raise StoreError(f"line {n} of {log} is not an FE task ({err})") from err
-        path = Path(cache_dir) / f"{key}.npy"
+        path = Path(cache_dir) / cache_file(key, task[1])
         if key in seen or not path.is_file():
             continue
         seen[key] = Entry(key, *task, np.load(path))
@@ -123,7 +116,8 @@ def entries_from_cache(log: Path, cache_dir: Path) -> list[Entry]:
 
 
 def write_store(entries: list[Entry], folder: Path, provenance: dict | None = None) -> Path:
-    """Write ``entries`` as the store ``folder`` (replacing it whole, atomically).
+    """Write ``entries`` as the store ``folder`` (replacing it whole, atomically): the runs'
+    poses in ``results.npz``, the ``STATE`` tasks' fields (if any) in ``snapshots.npz``.
 
     Parameters
     ----------
@@ -140,51 +134,78 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
         ``folder``.
     """
     folder = Path(folder)
-    specs = sorted({e.spec for e in entries})
-    rows = np.array([len(e.forces) for e in entries], dtype=np.int64)
-    results = np.full((int(rows.sum()), max(RESULT_COLUMNS.values())), np.nan)
-    widths = np.array([e.forces.shape[1] for e in entries], dtype=np.int64)
-    forces = np.full((int(rows.sum()), int(widths.max(initial=6))), np.nan)
-    at = 0
-    for e in entries:
-        forces[at : at + len(e.forces), : e.forces.shape[1]] = e.forces
-        at += len(e.forces)
-    at = 0
-    for e in entries:
-        results[at : at + len(e.forces), : e.results.shape[1]] = e.results
-        at += len(e.forces)
-    arrays = {
-        "keys": np.array([e.key for e in entries], dtype="U32"),
-        "spec_index": np.array([specs.index(e.spec) for e in entries], dtype=np.int64),
-        "specs": np.array(specs, dtype=object).astype(str),
-        "kind": np.array([KINDS.index(e.kind) for e in entries], dtype=np.int64),
-        "steps": np.array([e.steps for e in entries], dtype=np.int64),
-        "rows": rows,
-        "widths": widths,
-        "forces": forces,
-        "results": results,
-    }
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}."))
-    np.savez_compressed(tmp / RESULTS, **arrays)
-    kinds = [e.kind for e in entries]
-    manifest = {
-        "version": STORE_VERSION,
-        "fingerprint": model_code_fingerprint(),
-        "fingerprints": fingerprints(),
-        "sha256": _sha256(tmp / RESULTS),
-        "entries": {k: kinds.count(k) for k in KINDS},
-        "runs": {k: int(rows[[i for i, x in enumerate(kinds) if x == k]].sum()) for k in KINDS},
-        **(provenance or {}),
-    }
-    (tmp / MANIFEST).write_text(json.dumps(manifest, indent=1, sort_keys=True) + "\n")
-    old = folder.with_name(f".{folder.name}.old")
-    shutil.rmtree(old, ignore_errors=True)
-    if folder.exists():
-        os.replace(folder, old)
-    os.replace(tmp, folder)
-    shutil.rmtree(old, ignore_errors=True)
+    tmp = staging(folder)
+    try:
+        manifest = {
+            "version": STORE_VERSION,
+            "fingerprint": model_code_fingerprint(),
+            "fingerprints": fingerprints(),
+            **write_arrays(tmp, entries),
+            **counts(entries),
+            **(provenance or {}),
+        }
+        (tmp / MANIFEST).write_text(json.dumps(manifest, indent=1, sort_keys=True) + "\n")
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    replace(tmp, folder)
     return folder
+
+
+def add_states(folder: Path, states: list[Entry], provenance: dict) -> dict:
+    """Put the ``STATE`` tasks ``states`` into the store ``folder`` beside its runs, without
+    regenerating it: ``results.npz`` is kept byte for byte, ``snapshots.npz`` written anew with
+    the stored fields and ``states`` (a stored field of the same key replaced), the manifest's
+    counts and checksum updated and ``provenance`` kept as its ``snapshots`` field; the new store
+    is read back, every key checked against its inputs, before it replaces the old one.
+
+    Parameters
+    ----------
+    folder : Path
+        The store, computed by the current FE code.
+    states : list of Entry
+        ``STATE`` tasks computed by the current FE code.
+    provenance : dict
+        What made them (commit, date, seconds …).
+
+    Returns
+    -------
+    dict
+        The new manifest.
+
+    Raises
+    ------
+    StoreError
+        As :func:`read_store`; a store of other FE code than the current one.
+    ValueError
+        For an entry of another kind.
+    """
+    folder = Path(folder)
+    if any(e.kind != STATE for e in states):
+        raise ValueError(f"states must be {STATE!r} tasks, got {sorted({e.kind for e in states})}")
+    manifest, entries = read_store(folder)
+    if manifest["fingerprints"] != fingerprints():
+        raise StoreError(
+            f"{folder} was computed by other FE code (fingerprints {manifest['fingerprints']}, "
+            f"the current code's {fingerprints()}): regenerate it with `{REGENERATE}`"
+        )
+    kept = {e.key: e for e in entries if e.kind == STATE} | {e.key: e for e in states}
+    tmp = staging(folder)
+    try:
+        shutil.copy2(folder / RESULTS, tmp / RESULTS)
+        manifest = {
+            **manifest,
+            **counts([e for e in entries if e.kind != STATE] + list(kept.values())),
+            SNAPSHOTS_SHA: write_states(tmp, list(kept.values())),
+            "snapshots": provenance,
+        }
+        (tmp / MANIFEST).write_text(json.dumps(manifest, indent=1, sort_keys=True) + "\n")
+        read_store(tmp)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    replace(tmp, folder)
+    return manifest
 
 
 def read_manifest(folder: Path, reads: tuple[int, ...] = READS) -> dict:
@@ -239,33 +260,17 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
 
 
 def load_entries(folder: Path, manifest: dict) -> list[Entry]:
-    """The entries of the store ``folder`` whose ``manifest`` was read, its checksum verified,
-    their keys not (:func:`read_store` checks them).
+    """The entries of the store ``folder`` whose ``manifest`` was read — its runs, then its
+    ``STATE`` tasks —, the array files' checksums and the manifest's counts verified, the keys
+    not (:func:`read_store` checks them).
 
     Raises
     ------
     StoreError
-        For a ``results.npz`` whose checksum differs from the manifest's.
+        For an array file whose checksum differs from the manifest's, a ``snapshots.npz`` the
+        manifest does not list, counts that differ from the manifest's.
     """
-    folder = Path(folder)
-    if _sha256(folder / RESULTS) != manifest["sha256"]:
-        raise StoreError(
-            f"{folder / RESULTS} does not match the checksum of its manifest (edited or "
-            f"corrupt): regenerate the store with `{REGENERATE}`"
-        )
-    with np.load(folder / RESULTS) as z:
-        a = {k: z[k] for k in z.files}
-    starts = np.r_[0, np.cumsum(a["rows"])]
-    widths = a.get("widths", np.full(len(a["keys"]), 6))
-    entries = []
-    for i, key in enumerate(a["keys"].tolist()):
-        kind = KINDS[int(a["kind"][i])]
-        forces = a["forces"][starts[i] : starts[i + 1], : int(widths[i])]
-        entries.append(Entry(
-            key, str(a["specs"][a["spec_index"][i]]), kind, int(a["steps"][i]), forces,
-            a["results"][starts[i] : starts[i + 1], : RESULT_COLUMNS[kind]],
-        ))  # fmt: skip
-    return entries
+    return read_arrays(Path(folder), manifest)
 
 
 @lru_cache(maxsize=64)
@@ -321,12 +326,5 @@ def seed_cache(folder: Path, cache_dir: Path) -> int:
         fd, tmp = tempfile.mkstemp(dir=cache_dir, suffix=".npy.tmp")
         with os.fdopen(fd, "wb") as fh:
             np.save(fh, e.results)
-        os.replace(tmp, cache_dir / f"{e.key}.npy")
+        os.replace(tmp, cache_dir / e.file)
     return len(entries)
-
-
-def _sha256(path: Path) -> str:
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-    except FileNotFoundError as err:
-        raise StoreError(f"no {path}: regenerate the store with `{REGENERATE}`") from err

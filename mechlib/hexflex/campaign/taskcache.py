@@ -26,6 +26,10 @@ from mechlib.paths import fe_log_path
 #: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics;
 #: 4: the fingerprint digests the FE code's normalised syntax trees, not its bytes and names
 CACHE_VERSION = 4
+#: the kind of a task that keeps a run's converged displacement field, not its poses: a
+#: reduced-order model's snapshot (:mod:`mechlib.hexflex.rom.snapshots`), one run a task, its
+#: result (1, n_dofs) [mm]
+STATE = "state"
 
 
 @lru_cache(maxsize=4)
@@ -114,6 +118,12 @@ def task_key(
     h.update(f"{version}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
     return h.hexdigest()[:32]
+
+
+def cache_file(key: str, kind: str) -> str:
+    """The name of a task's file in the FE cache: ``<key>.npy``, or ``<key>.state.npy`` for a
+    :data:`STATE` task (a displacement field, 8 bytes a DOF, told apart by its name)."""
+    return f"{key}.{STATE}.npy" if kind == STATE else f"{key}.npy"
 
 
 def cache_result(path: Path, n_rows: int, fut: cf.Future) -> None:

@@ -1,36 +1,59 @@
-"""Converged non-linear displacement fields (snapshots) of a force design, cached on disk.
+"""Converged non-linear displacement fields (snapshots) of a force design: FE tasks of their own
+kind, cached, logged and stored like the campaign's runs.
 
 A reduced-order model is built from full solutions, not poses (:mod:`mechlib.hexflex.rom.model`):
-:func:`nonlinear_states` solves each force vector with the model's non-linear solver (in an
-executor, as :func:`mechlib.hexflex.campaign.experiments.run_experiments` does) and keeps each
-field in the FE cache under a key made of the model code, the model specification and the forces.
+:func:`nonlinear_states` runs one ``STATE`` task per force vector
+(:func:`~mechlib.hexflex.campaign.experiments.task_poses`: the model's non-linear solver, one
+load step, the campaign's method) in an executor, as
+:func:`~mechlib.hexflex.campaign.experiments.run_experiments` does. Each field is cached under
+the campaign's task key (:func:`~mechlib.hexflex.campaign.taskcache.task_key`: the FE code's
+fingerprint, the model specification, the kind, the steps and the forces) as
+``<key>.state.npy``, each task is logged to ``$MECHLIB_FE_LOG``, so ``make store`` packs the
+fields into the results store (``store/snapshots.npz``), ``store seed`` writes them back into a
+build's cache and ``store check`` recomputes a sample of them cold.
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
-import hashlib
+import functools
 from pathlib import Path
 
 import numpy as np
 
 from mechlib.hexflex.campaign.executors import InProcessExecutor
-from mechlib.hexflex.campaign.experiments import ModelSpec, check_forces_design, solver_for
-from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
+from mechlib.hexflex.campaign.experiments import ModelSpec, check_forces_design, task_poses
+from mechlib.hexflex.campaign.taskcache import (
+    STATE,
+    cache_file,
+    cache_result,
+    log_task,
+    model_code_fingerprint,
+    task_key,
+)
 
-#: 2: the code fingerprint digests the FE code's syntax trees (cache format 4)
-_VERSION = 2
-
-
-def _state(spec: ModelSpec, forces: np.ndarray) -> np.ndarray:
-    return solver_for(spec).solve(forces)[0]
+#: load steps of a snapshot run (the solver's default: the whole load at once)
+STATE_STEPS = 1
 
 
 def state_key(spec: ModelSpec, forces: np.ndarray) -> str:
-    """Cache file stem of the converged field of ``spec`` under ``forces`` (6,) [N]."""
-    h = hashlib.sha256(f"state|{_VERSION}|{model_code_fingerprint()}|{spec.key()}|".encode())
-    h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
-    return h.hexdigest()[:32]
+    """The task key of the converged field of ``spec`` under ``forces`` (6,) [N] (the campaign's
+    :func:`~mechlib.hexflex.campaign.taskcache.task_key` of a ``STATE`` task of one run)."""
+    row = np.asarray(forces, dtype=float).reshape(1, -1)
+    fingerprint = model_code_fingerprint(spec.TASK_MODULES)
+    return task_key(spec.key(), STATE, row, STATE_STEPS, fingerprint)
+
+
+def _cached_state(path: Path | None) -> np.ndarray | None:
+    """The cached field (1, n_dofs) at ``path``, or ``None`` if absent, unreadable, of another
+    shape or not finite (then it is solved again)."""
+    if path is None or not path.is_file():
+        return None
+    try:
+        field = np.load(path)
+    except (OSError, ValueError, EOFError):
+        return None
+    return field if field.ndim == 2 and len(field) == 1 and np.all(np.isfinite(field)) else None
 
 
 def nonlinear_states(
@@ -51,7 +74,8 @@ def nonlinear_states(
     executor : concurrent.futures.Executor, optional
         Where the solves run; default in-process.
     cache_dir : Path, optional
-        Folder of cached fields (``<key>.state.npy``, 8 bytes a DOF); ``None``: no cache.
+        Folder of the FE cache (a field is ``<key>.state.npy``, (1, n_dofs), 8 bytes a DOF; a
+        results store seeds it); ``None``: no cache.
 
     Returns
     -------
@@ -64,21 +88,26 @@ def nonlinear_states(
     """
     d = check_forces_design(design)
     pool = executor if executor is not None else InProcessExecutor()
-    paths = [
-        Path(cache_dir) / f"{state_key(spec, f)}.state.npy" if cache_dir is not None else None
-        for f in d
-    ]
     if cache_dir is not None:
         Path(cache_dir).mkdir(parents=True, exist_ok=True)
-    out: list[np.ndarray | None] = [
-        np.load(p) if p is not None and p.exists() else None for p in paths
+    paths = [
+        Path(cache_dir) / cache_file(state_key(spec, f), STATE) if cache_dir is not None else None
+        for f in d
     ]
-    pending = {pool.submit(_state, spec, d[i]): i for i, u in enumerate(out) if u is None}
+    out: list[np.ndarray | None] = [_cached_state(p) for p in paths]
+    pending: dict[cf.Future, int] = {}
+    for i, field in enumerate(out):
+        if field is not None:
+            log_task(paths[i], spec.key(), STATE, d[i : i + 1], STATE_STEPS, hit=True)
+            continue
+        fut = pool.submit(task_poses, spec, STATE, d[i : i + 1], STATE_STEPS)
+        if paths[i] is not None:  # cached as soon as it is done: an interrupted run keeps it
+            fut.add_done_callback(functools.partial(cache_result, paths[i], 1))
+            log_task(paths[i], spec.key(), STATE, d[i : i + 1], STATE_STEPS, hit=False)
+        pending[fut] = i
     for fut in cf.as_completed(pending):
         i = pending[fut]
-        out[i] = fut.result()
-        if paths[i] is not None:
-            tmp = paths[i].with_suffix(".tmp.npy")
-            np.save(tmp, out[i])
-            tmp.replace(paths[i])
-    return np.array(out)
+        out[i] = np.asarray(fut.result(), dtype=float).reshape(1, -1)
+        if paths[i] is not None:  # the callback may not have run yet (pool threads)
+            cache_result(paths[i], 1, fut)
+    return np.vstack(out)
