@@ -206,3 +206,21 @@ def test_blas_threads_do_not_change_the_digits() -> None:
     with threadpool_limits(limits=2, user_api="blas"):
         two = families.predict(families.fit_surrogate("cubic", x, y, amplitude=AMP), xv)
     np.testing.assert_array_equal(one, two)
+
+
+def test_the_fast_legendre_evaluation_agrees_with_the_recurrence_up_to_the_largest_degree() -> None:
+    from mechlib.metamodels import legendre
+    from mechlib.metamodels.families import legendre_products, total_degree_exponents
+    from mechlib.metamodels.realtime import MAX_DEGREE
+
+    rng = np.random.default_rng(3)
+    u = rng.uniform(-1.0, 1.0, (50, 6))
+    u[0] = 1.0  # the range's corners, where a power basis cancels most
+    u[1] = -1.0
+    for degree in (1, 5, MAX_DEGREE):
+        exps = total_degree_exponents(6, degree)
+        coef = rng.normal(size=(len(exps), 3))
+        want = legendre_products(u, exps) @ coef
+        got = legendre.evaluate(u, exps, coef)
+        assert np.abs(got - want).max() <= 1e-11 * np.abs(want).max()
+        assert not exps.flags.writeable

@@ -66,6 +66,9 @@ def _evaluator(exponents: np.ndarray) -> LegendrePolynomial:
     if hit is not None and hit[0] is exponents:
         return hit[1]
     made = LegendrePolynomial.of(exponents)
+    # the evaluator is found again by the array's identity: freeze the array, so that an
+    # in-place change cannot leave a stale evaluator behind it
+    exponents.setflags(write=False)
     if len(_cache) >= _KEEP:
         _cache.pop(next(iter(_cache)))
     _cache[id(exponents)] = (exponents, made)
@@ -96,6 +99,8 @@ def evaluate(u: np.ndarray, exponents: np.ndarray, coef: np.ndarray) -> np.ndarr
     >>> u = np.array([[0.3, -0.7, 0.9], [1.0, 0.0, -1.0]])
     >>> bool(np.allclose(evaluate(u, exps, coef), legendre_products(u, exps) @ coef))
     True
+    >>> exps.flags.writeable  # frozen: its evaluator is kept by the array's identity
+    False
     """
     ev = _evaluator(exponents)
     table = np.power.outer(u, ev.powers) @ ev.to_legendre  # (runs, inputs, degree + 1)

@@ -172,7 +172,8 @@ def _rekeyed_kept(folder: Path, keys: set[str]) -> dict | None:
             return None
         with np.load(folder / store.RESULTS) as data:
             kept = len(keys & set(data["keys"].tolist()))
-    except (OSError, store.StoreError, KeyError, ValueError):
+    except (OSError, store.StoreError, KeyError, ValueError) as err:
+        print(f"store: the replaced store's re-keying record not carried over ({err})")
         return None
     return {**rekeyed, "kept": kept} if kept else None
 

@@ -118,17 +118,28 @@ def at_least(
     )
 
 
-def timed_below(label: str, ref: Ref, limit: float, unit: str) -> Test:
-    """A measured time (a record's timing) is below ``limit``. Its value is not written into the
-    evidence (a timing differs between runs; the page quotes it as measured), and the limit must
-    leave a margin of orders of magnitude, so that no machine of ours flips the verdict."""
+def timed_below(label: str, ref: Ref, limit: float | Ref, unit: str) -> Test:
+    """A measured time (a record's timing) is below ``limit`` (a number, or the record that holds
+    it, e.g. a page's deadline parameter). Its value is not written into the evidence (a timing
+    differs between runs; the page quotes it as measured), and the limit must leave a margin of
+    an order of magnitude at least, so that no machine of ours flips the verdict."""
+    if isinstance(limit, int | float):
+        return Test(
+            label,
+            (ref,),
+            lambda v: float(v) < limit,
+            lambda v: f"measured on the machine that built the book, below {_q(limit, unit, 'g')}",
+            kind="timed_below",
+            limit=limit,
+        )
     return Test(
         label,
-        (ref,),
-        lambda v: float(v) < limit,
-        lambda v: f"measured on the machine that built the book, below {_q(limit, unit, 'g')}",
+        (ref, limit),
+        lambda v, lim: float(v) < float(lim),
+        lambda v, lim: (
+            f"measured on the machine that built the book, below {_q(float(lim), unit, 'g')}"
+        ),
         kind="timed_below",
-        limit=limit,
     )
 
 

@@ -11,7 +11,6 @@ are the thesis's own claims: :mod:`mechlib.reporting.thesisclaims`). Registered 
 from __future__ import annotations
 
 from mechlib.metamodels.metrics import DISTINCT_ERROR_FACTOR, FULL_SCALE
-from mechlib.metamodels.realtime import DEADLINE_US
 from mechlib.parallelogram import comparison as para
 from mechlib.reporting import categories as cat
 from mechlib.reporting.calibrationclaims import CONDITIONING_BY_CONSTRUCTION, FLOPS_BY_CONSTRUCTION
@@ -366,7 +365,7 @@ def _ours_chapter2() -> list[ClaimSpec]:
                 timed_below(
                     "the distilled polynomial, one pose a call",
                     "realtime.best.single_us",
-                    DEADLINE_US,
+                    "parameters.deadline_us",
                     "µs",
                 ),
             ),

@@ -21,7 +21,6 @@ from mechlib.reporting import categories as cat
 from mechlib.reporting.calibrationclaims import BUDGETS_5R, chapter3_claims
 from mechlib.reporting.claimrules import (
     at_most,
-    exceeds,
     is_true,
     timed_below,
     with_construction,
@@ -35,15 +34,6 @@ THESIS = cat.SOURCE_THESIS
 #: the pages whose records the claims read
 VX, DOE, FB = "virtual_experiments", "published_doe", "fivebar_identification"
 PF = "parallelogram_fe"
-#: a design estimates main effects clear of two-factor interactions when no interaction
-#: correlates with another factor's main effect beyond round-off
-ALIAS_CLEAR = 1e-9
-#: why the aliasing of Table 2's design is shown and never counted: it is arithmetic on the
-#: published design, the same whatever the runs' responses
-PB_ALIASING_FIXED = (
-    "arithmetic on the published design: a 12-run Plackett–Burman design aliases each two-factor "
-    "interaction with other factors' main effects whatever the responses"
-)
 #: claims of the thesis that no computation of this book can test, and why
 UNTESTABLE = (
     (
@@ -200,17 +190,6 @@ def _chapter2() -> list[ClaimSpec]:
             "and could be neglected from Eq 6",
             VX,
             (
-                with_construction(
-                    exceeds(
-                        "Table 2's 12-run Plackett–Burman design aliases two-factor interactions "
-                        "with the main effects of the other factors, so its analysis cannot show "
-                        "that interactions are unimportant",
-                        "table2.pb_interaction_aliasing",
-                        ALIAS_CLEAR,
-                        "largest |correlation| between an interaction and another main effect",
-                    ),
-                    PB_ALIASING_FIXED,
-                ),
                 with_construction(
                     at_most(
                         "Eq 6 fitted to Table 4's runs on the linear FE model, all second-order "

@@ -130,6 +130,9 @@ def rekey_store(folder: Path, commit: str) -> tuple[dict, int]:
     provenance = {k: manifest[k] for k in PROVENANCE if k in manifest}
     provenance["rekeyed"] = {
         "from": {"version": manifest["version"], "fingerprints": old},
+        # the build that solved the runs, kept here too: a later pack that adds runs replaces
+        # the top-level fields with its own
+        "solved": {k: manifest[k] for k in PROVENANCE if k in manifest},
         "commit": commit,
         "date": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
         "entries": len(entries),
