@@ -1,7 +1,7 @@
 """Progress and time of an FE campaign, reported where the person who started it can see them
 (and one-line notes of iterative steps such as an identification).
 
-A campaign (:func:`~mechlib.hexflex.campaign.experiments.run_experiments`) opens a
+A campaign (:func:`~mechlib.campaign.experiments.run_experiments`) opens a
 :class:`Progress` once it knows how many of its tasks are cached and how many must be computed.
 It reports, as JSON lines to the file ``$MECHLIB_PROGRESS`` names (the build sets it for each
 notebook it executes and draws one updating line on its own terminal, so nothing lands in the

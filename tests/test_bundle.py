@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
 from mechlib import published as pub
 from mechlib.pipeline import bundle
 
@@ -49,9 +50,9 @@ def _store(folder: Path) -> Path:
     """A small store without FE: two HexFlex models with a linear and a non-linear task, two
     parallelogram models with a non-linear task each (one of two runs), keys as the code makes
     them."""
+    from mechlib.campaign import store as st
+    from mechlib.campaign.taskcache import task_key
     from mechlib.compliant.spec import MechanismSpec
-    from mechlib.hexflex.campaign import store as st
-    from mechlib.hexflex.campaign.taskcache import task_key
     from mechlib.parallelogram import ourfe
     from mechlib.parallelogram.mechanism import layout
 
@@ -120,7 +121,7 @@ def test_store_tables_hold_the_parallelogram_runs_and_say_how_many(tmp_path: Pat
 
 
 def test_store_tables_refuse_to_lose_runs(tmp_path: Path) -> None:
-    from mechlib.hexflex.campaign.store import StoreError
+    from mechlib.campaign.store import StoreError
     from mechlib.pipeline import bundleruns
 
     folder = _store(tmp_path / "store")

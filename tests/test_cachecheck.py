@@ -6,11 +6,13 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import cachecheck as cc
-from mechlib.hexflex.campaign import experiments as ex
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign import cachecheck as cc
+from mechlib.campaign import experiments as ex
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.paths import FE_LOG_ENV
 
-SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+SPEC = ModelSpec(SMALL, element="q2", mesh_size=1.0)
 
 
 def _log_two_builds(tmp_path, monkeypatch, forces: np.ndarray):
@@ -63,12 +65,13 @@ def test_the_sample_is_seeded_and_refuses_bad_counts() -> None:
 
 
 def test_the_sample_takes_a_task_of_every_model_first() -> None:
-    # a model with one task among thousands of another's is still checked
-    specs = ["rare"] + ["common"] * 300 + ["other"] * 50
+    # a model with one task among thousands of another's is still checked (key texts: JSON)
+    rare, common, other = (f'{{"model": "{m}"}}' for m in ("rare", "common", "other"))
+    specs = [rare] + [common] * 300 + [other] * 50
     entries = [{"file": f"{i}.npy", "kind": "nonlinear", "spec": s} for i, s in enumerate(specs)]
     for seed in range(5):
         picked = cc.sample(entries, {"nonlinear": 4}, seed=seed)
-        assert len(picked) == 4 and {e["spec"] for e in picked} == {"rare", "common", "other"}
+        assert len(picked) == 4 and {e["spec"] for e in picked} == {rare, common, other}
         assert len({e["file"] for e in picked}) == 4
         two = cc.sample(entries, {"nonlinear": 2}, seed=seed)
         assert len({e["spec"] for e in two}) == 2  # fewer draws than models: distinct models
@@ -88,13 +91,14 @@ def test_the_stores_sample_is_uniform_over_its_tasks_whatever_their_model() -> N
 
     # one model holds 90 % of the tasks: it gets about 90 % of the draws (spread over models,
     # it would get a third), so a wrong share anywhere is missed with at most (1 - p)^n
-    specs = ["big"] * 900 + ["small"] * 50 + ["tiny"] * 50
+    big, small, tiny = (f'{{"model": "{m}"}}' for m in ("big", "small", "tiny"))
+    specs = [big] * 900 + [small] * 50 + [tiny] * 50
     entries = [
         SimpleNamespace(key=f"{i:04d}", kind="nonlinear", spec=s) for i, s in enumerate(specs)
     ]
     draws = [cc.sample_uniform(entries, {"nonlinear": 10}, seed) for seed in range(200)]
     assert all(len({e.key for e in d}) == 10 for d in draws)
-    share = np.mean([e.spec == "big" for d in draws for e in d])
+    share = np.mean([e.spec == big for d in draws for e in d])
     assert 0.87 < share < 0.93  # 2000 draws: standard error 0.0067
     # seeded, whatever order the entries come in; all of a kind when fewer than asked
     assert draws[3] == cc.sample_uniform(entries[::-1], {"nonlinear": 10}, 3)
@@ -111,9 +115,9 @@ def test_the_stores_sample_is_uniform_over_its_tasks_whatever_their_model() -> N
 
 
 def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> None:
-    from mechlib.hexflex.campaign.store import Entry
+    from mechlib.campaign.store import Entry
 
-    specs = [ex.ModelSpec(SMALL, mesh_size=f * SMALL.narrowest) for f in (0.9, 1.0)]
+    specs = [ModelSpec(SMALL, mesh_size=f * SMALL.narrowest) for f in (0.9, 1.0)]
     forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.2, -0.1]])
     entries = [
         Entry(
@@ -138,7 +142,7 @@ def test_two_processes_recompute_the_same_checks_in_the_same_order(tmp_path) -> 
 def test_the_determinism_sample_leaves_the_stores_entries_to_the_store_check(
     tmp_path, monkeypatch, capsys
 ) -> None:
-    from mechlib.hexflex.campaign import store
+    from mechlib.campaign import store
     from mechlib.pipeline import cli
     from mechlib.pipeline.rerun import HIT_LOG
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import compliance as cc
-from mechlib.hexflex.campaign import experiments as ex
+from mechlib.campaign import experiments as ex
+from mechlib.hexflex import compliance as cc
 from mechlib.hexflex.fe.model import HexFlexModel
 
 

@@ -8,12 +8,14 @@ import dataclasses
 import numpy as np
 import pytest
 
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign.cachecheck import spec_from_key
+from mechlib.campaign.experiments import run_experiments
+from mechlib.campaign.taskcache import model_code_fingerprint
 from mechlib.compliant.layout import Layout, Load, check_load_design
 from mechlib.compliant.model import MechanismModel
 from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign.cachecheck import spec_from_key
-from mechlib.hexflex.campaign.experiments import run_experiments
-from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.parallelogram import published as pub
 from mechlib.parallelogram.mechanism import layout
 
@@ -92,7 +94,9 @@ def test_linear_compliance_meets_guided_beam_theory_and_couples_no_force() -> No
 def test_campaign_caches_a_mechanism_and_keeps_the_hexflex_fingerprint(tmp_path) -> None:
     spec = MechanismSpec(layout(), 10.0, 1)
     assert spec_from_key(spec.key()) == spec
-    assert model_code_fingerprint(spec.TASK_MODULES) != model_code_fingerprint()
+    assert model_code_fingerprint(spec.TASK_MODULES) != model_code_fingerprint(
+        ModelSpec.TASK_MODULES
+    )
     loads = np.array([pub.loads_to_newton(0.0, 2.0, 0.0)], dtype=float)
     first = run_experiments(spec, loads, kind="nonlinear", steps=1, cache_dir=tmp_path,
                             progress=False)  # fmt: skip

@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from mechlib.hexflex.campaign import daskworker
+from mechlib.campaign import daskworker
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc's mallopt")
@@ -15,7 +15,7 @@ def test_restore_malloc_sets_glibc_thresholds_and_one_blas_thread() -> None:
 
     code = (  # in a process of its own: the BLAS limit lasts for the life of the process
         "import numpy; from threadpoolctl import threadpool_info; "
-        "from mechlib.hexflex.campaign import daskworker as d; ok = d.restore_malloc(); "
+        "from mechlib.campaign import daskworker as d; ok = d.restore_malloc(); "
         "print(ok, sorted({i['num_threads'] for i in threadpool_info() "
         "if i['user_api'] == 'blas'}))"
     )
@@ -40,7 +40,7 @@ def test_a_task_thread_can_limit_blas_after_the_plugins_thread_did() -> None:
 import threading
 import numpy
 from threadpoolctl import threadpool_info
-from mechlib.hexflex.campaign import daskworker as d
+from mechlib.campaign import daskworker as d
 done, alive = threading.Event(), threading.Event()
 def setup():  # stays alive, as a worker's event-loop thread does
     d.restore_malloc()

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.hexflex.studies.departure import parity_split, parity_summary
 
 
@@ -71,20 +72,20 @@ def test_linear_poses_at_the_models_quadrature_are_the_linear_models():
 def test_linear_poses_for_a_spec_uses_the_processs_model_and_solver():
     from test_hexflex import SMALL
 
-    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.campaign import experiments as ex
     from mechlib.hexflex.studies.departure import linear_poses, linear_poses_for
 
     forces = np.array([[0.3, -0.2, 0.1, 0.0, 0.5, -0.4], [-0.1, 0.6, 0.0, 0.2, -0.3, 0.1]])
     ex.release_models()
     try:
-        spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+        spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
         # at the model's quadrature: the cached linear model's own poses, bit for bit
         np.testing.assert_array_equal(
             linear_poses_for(spec, forces), ex.model_for(spec).poses(forces)
         )
         assert ex.solver_for.cache_info().currsize == 0  # no solver built for it
         # at another quadrature: the process's solver of that spec (built once, then reused)
-        other = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0, quad_order=6)
+        other = ModelSpec(SMALL, element="q2", mesh_size=1.0, quad_order=6)
         got = linear_poses_for(other, forces)
         assert ex.solver_for.cache_info().currsize == 1
         np.testing.assert_array_equal(got, linear_poses(ex.solver_for(other), forces))

@@ -7,12 +7,13 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
+from mechlib.campaign import executors
+from mechlib.campaign import experiments as ex
+from mechlib.campaign.sources import model_modules
 from mechlib.fe.nonlinear import ConvergenceError
-from mechlib.hexflex.campaign import executors
-from mechlib.hexflex.campaign import experiments as ex
-from mechlib.hexflex.campaign.sources import model_modules
+from mechlib.hexflex.spec import ModelSpec
 
-SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
+SPEC = ModelSpec(SMALL, element="shell", mesh_size=1.0)
 
 
 class FailingExecutor(cf.Executor):
@@ -44,7 +45,7 @@ def test_serial_runner_matches_the_model_and_the_cache_is_reused(tmp_path) -> No
     # a cached result is read back, not recomputed: tamper with it and see it come back
     np.save(files[0], np.zeros((30, 6)))
     assert not ex.run_experiments(SPEC, d, cache_dir=tmp_path, progress=False).any()
-    other = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0, young=70_000.0)
+    other = ModelSpec(SMALL, element="shell", mesh_size=1.0, young=70_000.0)
     assert ex.run_experiments(other, d, cache_dir=tmp_path, progress=False).any()
 
 
@@ -55,7 +56,7 @@ def _modules_a_task_loads(statements: str) -> set[str]:
     import sys
 
     code = (
-        "import sys, numpy as np; from mechlib.hexflex.campaign import experiments as ex; "
+        "import sys, numpy as np; from mechlib.campaign import experiments as ex; "
         + statements
         + "print(' '.join(m for m in sys.modules if m.startswith('mechlib.') "
         "and getattr(sys.modules[m], '__file__', None)))"
@@ -73,31 +74,33 @@ def test_every_module_that_defines_a_result_is_in_the_cache_key() -> None:
     # every mechlib module that a task's code loads (run one: imports inside functions too)
     loaded_all = _modules_a_task_loads(
         "from mechlib.hexflex.geometry import HexFlexGeometry; "
-        f"spec = ex.ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
+        "from mechlib.hexflex.spec import ModelSpec; "
+        f"spec = ModelSpec(HexFlexGeometry(**{dataclasses.asdict(SMALL)!r}), element='q2', "
         "mesh_size=1.0); "
         "ex._task(spec, 'nonlinear', np.full((1, 6), 0.1), 1); "
     )
     # the runner, where it runs tasks, its progress reports, its cache key and its cache's
     # folders define no result
     runner = {
-        "mechlib.hexflex.campaign",
-        "mechlib.hexflex.campaign.experiments",
-        "mechlib.hexflex.campaign.executors",
-        "mechlib.hexflex.campaign.spec",  # moved out of experiments: the specification's text
+        "mechlib.campaign",
+        "mechlib.campaign.experiments",
+        "mechlib.campaign.executors",
+        "mechlib.hexflex.spec",  # the specification's text
+        "mechlib.campaign.spec",  # what the runner needs of a specification
         "mechlib.progress",
-        "mechlib.hexflex.campaign.sources",
-        "mechlib.hexflex.campaign.codedigest",
-        "mechlib.hexflex.campaign.taskcache",
+        "mechlib.campaign.sources",
+        "mechlib.campaign.codedigest",
+        "mechlib.campaign.taskcache",
         "mechlib.paths",
     }
     # the runner also takes a compliant layout's specification: that code is in the layout's
     # tasks' key (the test below), not the HexFlex's
     runner |= {m for m in loaded_all if m.startswith("mechlib.compliant")}
     loaded = loaded_all - runner
-    keyed = set(model_modules())
+    keyed = set(model_modules(ModelSpec.TASK_MODULES))
     assert {"mechlib.fe.factor", "mechlib.fe.svk_tangent"} <= keyed
     # the runner's own code defines no result
-    assert "mechlib.hexflex.campaign.experiments" not in keyed
+    assert "mechlib.campaign.experiments" not in keyed
     assert loaded <= keyed, sorted(loaded - keyed)
 
 
@@ -113,14 +116,15 @@ def test_every_module_of_a_layouts_task_is_in_its_cache_key() -> None:
 
     keyed = set(model_modules(MechanismSpec.TASK_MODULES))
     runner = {
-        "mechlib.hexflex.campaign",
-        "mechlib.hexflex.campaign.experiments",
-        "mechlib.hexflex.campaign.executors",
-        "mechlib.hexflex.campaign.spec",
+        "mechlib.campaign",
+        "mechlib.campaign.experiments",
+        "mechlib.campaign.executors",
+        "mechlib.hexflex.spec",
+        "mechlib.campaign.spec",
         "mechlib.progress",
-        "mechlib.hexflex.campaign.sources",
-        "mechlib.hexflex.campaign.codedigest",
-        "mechlib.hexflex.campaign.taskcache",
+        "mechlib.campaign.sources",
+        "mechlib.campaign.codedigest",
+        "mechlib.campaign.taskcache",
         "mechlib.paths",
         "mechlib.parallelogram",  # the test's layout, given to the task as data
         "mechlib.parallelogram.mechanism",
@@ -294,7 +298,7 @@ def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -
 
     with executors.worker_pool(2) as pool:
         assert pool.submit(_blas_threads).result() == max(1, (os.cpu_count() or 1) // 2)
-        spec = ex.ModelSpec(SMALL, mesh_size=1.0)  # Q2: the non-linear solve
+        spec = ModelSpec(SMALL, mesh_size=1.0)  # Q2: the non-linear solve
         d = 3.0 * _design(2)
         pooled = ex.run_experiments(spec, d, kind="nonlinear", executor=pool, progress=False)
     here = ex.run_experiments(spec, d, kind="nonlinear", progress=False)
@@ -307,7 +311,7 @@ def test_the_worker_pool_shares_the_cores_and_agrees_with_the_in_process_run() -
 def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
     from mechlib.fe.finite_pose import finite_poses
 
-    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
     d = np.array([[0.3, -0.5, 0.2, 1.0, -0.7, 0.1]]) * 3.0
     small = ex.run_experiments(spec, d, kind="nonlinear", cache_dir=tmp_path, progress=False)
     solver = ex.solver_for(spec)
@@ -345,14 +349,14 @@ def test_nonlinear_runs_give_the_pose_in_three_conventions(tmp_path) -> None:
 
 def test_a_quadrature_order_out_of_range_is_refused_by_name() -> None:
     with pytest.raises(ValueError, match=r"quad_order must be in \[2, 10\], got 11"):
-        ex.ModelSpec(SMALL, quad_order=11)
+        ModelSpec(SMALL, quad_order=11)
     with pytest.raises(TypeError, match="quad_order must be an integer"):
-        ex.ModelSpec(SMALL, quad_order=4.0)
-    assert ex.ModelSpec(SMALL, quad_order=10).quad_order == 10
+        ModelSpec(SMALL, quad_order=4.0)
+    assert ModelSpec(SMALL, quad_order=10).quad_order == 10
 
 
 def test_release_models_empties_the_model_and_solver_caches() -> None:
-    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
     ex.model_for(spec)
     ex.solver_for(spec)
     assert ex._model.cache_info().currsize >= 1
@@ -363,7 +367,7 @@ def test_release_models_empties_the_model_and_solver_caches() -> None:
 
 
 def test_a_docstring_only_package_does_not_enter_the_cache_key() -> None:
-    from mechlib.hexflex.campaign import taskcache
+    from mechlib.campaign import taskcache
 
     assert not taskcache._defines_code(b'"""What the package holds."""\n')
     assert not taskcache._defines_code(b'"""Doc."""\n\nfrom __future__ import annotations\n')

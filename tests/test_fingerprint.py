@@ -14,11 +14,13 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from mechlib.hexflex.campaign import codedigest as cd
-from mechlib.hexflex.campaign import rekey as rk
-from mechlib.hexflex.campaign import store as st
-from mechlib.hexflex.campaign.sources import model_modules
-from mechlib.hexflex.campaign.taskcache import model_code_fingerprint, task_key
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign import codedigest as cd
+from mechlib.campaign import rekey as rk
+from mechlib.campaign import store as st
+from mechlib.campaign.sources import model_modules
+from mechlib.campaign.taskcache import model_code_fingerprint, task_key
+from mechlib.hexflex.spec import ModelSpec
 
 BASE = '''
 """A module."""
@@ -184,9 +186,9 @@ def test_a_typing_only_import_is_not_followed(fingerprint_of) -> None:
 
 def test_the_fe_closure_leaves_out_the_solid_model_protocol() -> None:
     """``mechlib.fe.nonlinear`` imports the protocol under ``if TYPE_CHECKING:`` only."""
-    assert "mechlib.fe.nonlinear" in model_modules()
-    assert "mechlib.fe.protocol" not in model_modules()
-    assert "mechlib.fe.protocol" in model_modules(format3=True)
+    assert "mechlib.fe.nonlinear" in model_modules(ModelSpec.TASK_MODULES)
+    assert "mechlib.fe.protocol" not in model_modules(ModelSpec.TASK_MODULES)
+    assert "mechlib.fe.protocol" in model_modules(ModelSpec.TASK_MODULES, format3=True)
 
 
 # --- re-keying a store of format 3 ---------------------------------------------------------------

@@ -4,12 +4,13 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
+from mechlib.campaign import experiments as ex
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.campaign import experiments as ex
 from mechlib.hexflex.fe import lean
 from mechlib.hexflex.fe import mesh as ms
 from mechlib.hexflex.fe.model import HexFlexModel
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.hexflex.studies import leanmesh
 
 
@@ -55,7 +56,7 @@ def test_stage_fit_model_on_the_default_mesh_is_the_default_model(default_model)
 
 
 def test_lean_model_is_smaller_and_close_to_the_default(default_model) -> None:
-    model = ex.ModelSpec(SMALL, mesh="lean").build()
+    model = ModelSpec(SMALL, mesh="lean").build()
     assert isinstance(model, lean.StageFitModel)
     assert model.n_dofs < default_model.n_dofs  # (SMALL has wide flexures and a small body)
     c, c0 = model.compliance(), default_model.compliance()
@@ -70,11 +71,11 @@ def test_mesh_options_and_recipe_refuse_bad_input() -> None:
     with pytest.raises(ValueError, match="body_grading"):
         ms.sector_mesh(SMALL, size, body_grading=0.0)
     with pytest.raises(ValueError, match="mesh"):
-        ex.ModelSpec(SMALL, mesh="coarse")
+        ModelSpec(SMALL, mesh="coarse")
     with pytest.raises(ValueError, match="pose_mesh_size"):
-        ex.ModelSpec(SMALL, mesh="lean", mesh_size=2.0).build()  # wider than the flexures
+        ModelSpec(SMALL, mesh="lean", mesh_size=2.0).build()  # wider than the flexures
     with pytest.raises(ValueError, match="element must be 'q2'"):
-        ex.ModelSpec(SMALL, mesh="lean", element="shell")
+        ModelSpec(SMALL, mesh="lean", element="shell")
 
 
 def test_points_outside_the_mesh_are_refused(default_model) -> None:
@@ -161,7 +162,7 @@ def test_compare_runs_keeps_the_runs_both_solved_and_splits_the_sweep() -> None:
 
 
 def test_a_lean_campaign_task_gives_every_pose_convention() -> None:
-    spec = ex.ModelSpec(SMALL, mesh="lean")
+    spec = ModelSpec(SMALL, mesh="lean")
     forces = np.array([[0.2, -0.1, 0.15, 0.05, -0.2, 0.1]])
     out = ex.run_experiments(spec, forces, kind="nonlinear", pose="all", progress=False)
     assert out.shape == (1, 18) and np.all(np.isfinite(out))
@@ -188,7 +189,7 @@ def test_lean_stand_in_is_fitted_to_the_default_models_magnitudes(monkeypatch) -
         )  # fmt: skip
 
     monkeypatch.setattr(leanmesh, "fit_lean", fake_fit)
-    spec = ex.ModelSpec(SMALL, mesh_size=0.9 * SMALL.narrowest, quad_order=6)
+    spec = ModelSpec(SMALL, mesh_size=0.9 * SMALL.narrowest, quad_order=6)
     stand_in, fit = leanmesh.lean_spec(spec, max_evaluations=7)
     assert stand_in.mesh == "lean" and stand_in.geometry == fit.geometry != SMALL
     assert (stand_in.mesh_size, stand_in.quad_order) == (spec.mesh_size, 6)
@@ -199,7 +200,7 @@ def test_lean_stand_in_is_fitted_to_the_default_models_magnitudes(monkeypatch) -
     with pytest.raises(ValueError, match="default-mesh Q2"):
         leanmesh.lean_spec(stand_in)
     with pytest.raises(ValueError, match="default-mesh Q2"):
-        leanmesh.lean_spec(ex.ModelSpec(SMALL, element="q1"))
+        leanmesh.lean_spec(ModelSpec(SMALL, element="q1"))
 
 
 def test_the_criteria_hold_only_when_every_difference_is_within_its_limit() -> None:

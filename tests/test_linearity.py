@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import experiments as ex
+from mechlib.campaign import experiments as ex
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.hexflex.studies import linearity
 
-SPEC = ex.ModelSpec(SMALL, element="shell", mesh_size=1.0)
+SPEC = ModelSpec(SMALL, element="shell", mesh_size=1.0)
 
 
 def test_linear_range_recovers_a_power_law_crossing() -> None:
@@ -28,10 +29,10 @@ def test_linear_range_recovers_a_power_law_crossing() -> None:
 def test_linearity_sweep_on_a_small_q2_model(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    model = ex.model_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
+    model = ex.model_for(ModelSpec(SMALL, element="q2", mesh_size=1.0))
     f = np.array([0.3, -0.5, 0.2, 1.0, -0.7, 0.1])  # largest |component| is 1 N
     amps = np.array([0.1, 0.2, 0.4])
-    solver = ex.solver_for(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0))
+    solver = ex.solver_for(ModelSpec(SMALL, element="q2", mesh_size=1.0))
     sweep = linearity.linearity_sweep(solver, 5.0 * f, amps)  # the direction is rescaled to 1 N
     np.testing.assert_array_equal(sweep["amplitude"], amps)
     # the linear poses are the model's linear solve, exactly proportional to the amplitude
@@ -54,7 +55,7 @@ def test_linearity_sweep_on_a_small_q2_model(
     cases = np.r_[amps, 1.5]  # 1.5 N: two load steps, a group of its own
     direct = linearity.linearity_sweep(solver, f, cases)
     for cache in (None, tmp_path):
-        runs = linearity.sweep_runs(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
+        runs = linearity.sweep_runs(ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
                                     cache_dir=cache)  # fmt: skip
         for key, value in direct.items():
             np.testing.assert_array_equal(runs[key], value, err_msg=key)
@@ -64,7 +65,7 @@ def test_linearity_sweep_on_a_small_q2_model(
         raise AssertionError("a cached sweep solved a case")
 
     monkeypatch.setattr(ex, "_task", no_solve)
-    again = linearity.sweep_runs(ex.ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
+    again = linearity.sweep_runs(ModelSpec(SMALL, element="q2", mesh_size=1.0), f, cases,
                                  cache_dir=tmp_path)  # fmt: skip
     np.testing.assert_array_equal(again["nonlinear"], direct["nonlinear"])
     with pytest.raises(ValueError, match="direction must have a non-zero component"):

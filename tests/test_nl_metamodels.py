@@ -12,8 +12,9 @@ import pytest
 from matplotlib.figure import Figure
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import experiments as ex
+from mechlib.campaign import experiments as ex
 from mechlib.hexflex.rom import snapshots
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.metamodels import designs, families, inverse, scoring, study
 from mechlib.plotting import metamodels as mmplot
 
@@ -63,7 +64,7 @@ def test_cv_folds_fall_back_to_leave_one_out_and_refuse_too_few_runs() -> None:
 
 
 def test_snapshot_fields_are_the_solver_s_and_cached(tmp_path) -> None:
-    spec = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
     forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
     fields = snapshots.nonlinear_states(spec, forces, cache_dir=tmp_path)
     solver = ex.solver_for(spec)

@@ -9,12 +9,14 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import cachecheck as cc
-from mechlib.hexflex.campaign import experiments as ex
-from mechlib.hexflex.campaign import store as st
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign import cachecheck as cc
+from mechlib.campaign import experiments as ex
+from mechlib.campaign import store as st
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.paths import FE_LOG_ENV
 
-SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+SPEC = ModelSpec(SMALL, element="q2", mesh_size=1.0)
 FORCES = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3], [-0.2, 0.1, 0.4, -0.3, 0.2, 0.1]])
 
 
@@ -65,7 +67,7 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
     entries = st.entries_from_cache(log, cache)
     folder = st.write_store(entries, tmp_path / "store")
     # other FE code: the fingerprint differs
-    monkeypatch.setattr(st, "model_code_fingerprint", lambda: "0123456789abcdef")
+    monkeypatch.setattr(st, "model_code_fingerprint", lambda modules: "0123456789abcdef")
     with pytest.raises(st.StoreError, match=r"3 entries .* other FE code .*`make store`"):
         st.seed_cache(folder, tmp_path / "c1")
     monkeypatch.undo()
@@ -134,7 +136,7 @@ def cluster():
 
 
 def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_path, monkeypatch):
-    from mechlib.hexflex.campaign import executors
+    from mechlib.campaign import executors
 
     forces = np.vstack([FORCES, -FORCES])
     with executors.dask_executor(cluster.scheduler_address) as pool:
@@ -150,7 +152,7 @@ def test_a_campaign_on_a_dask_cluster_matches_the_in_process_one(cluster, tmp_pa
 
 
 def test_a_scheduler_that_does_not_answer_is_named() -> None:
-    from mechlib.hexflex.campaign import executors
+    from mechlib.campaign import executors
 
     with pytest.raises(RuntimeError, match=r"no Dask scheduler answers at tcp://127\.0\.0\.1:9"):
         executors.dask_executor("tcp://127.0.0.1:9", timeout=2.0)

@@ -9,14 +9,16 @@ import numpy as np
 import pytest
 from test_hexflex import SMALL  # tests/ is on sys.path (pytest prepend import mode)
 
-from mechlib.hexflex.campaign import cachecheck as cc
-from mechlib.hexflex.campaign import experiments as ex
-from mechlib.hexflex.campaign import store as st
-from mechlib.hexflex.campaign.taskcache import STATE, model_code_fingerprint, task_key
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign import cachecheck as cc
+from mechlib.campaign import experiments as ex
+from mechlib.campaign import store as st
+from mechlib.campaign.taskcache import STATE, model_code_fingerprint, task_key
 from mechlib.hexflex.rom import snapshots
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.paths import FE_LOG_ENV
 
-SPEC = ex.ModelSpec(SMALL, element="q2", mesh_size=1.0)
+SPEC = ModelSpec(SMALL, element="q2", mesh_size=1.0)
 FORCES = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3], [-0.2, 0.1, 0.4, -0.3, 0.2, 0.1]])
 
 
@@ -150,7 +152,7 @@ def test_add_snapshots_solves_the_meta_model_page_s_snapshot_runs_on_its_model()
     for line in (  # the page's design, its default model, its snapshot call
         "design_runs = np.vstack([pub.TABLE2_DESIGN, pub.TABLE4_DESIGN])",
         'nonlinear_mesh = \\"lean\\"',
-        "spec = ex.ModelSpec(g, mesh_size=mesh_fraction * g.narrowest)",
+        "spec = ModelSpec(g, mesh_size=mesh_fraction * g.narrowest)",
         "spec = leanmesh.lean_spec(spec, cache_dir=cache)[0]",
         "snapshots.nonlinear_states(spec, design_runs,",
     ):

@@ -2,11 +2,11 @@
 
 The same non-linear runs of the DOE chapter's model (its lean stand-in, as the chapter solves
 them; no FE cache) are solved on a local pool of ``workers`` processes with one BLAS thread each
-(:func:`mechlib.hexflex.campaign.executors.executor`, as the notebooks do, after the model is
+(:func:`mechlib.campaign.executors.executor`, as the notebooks do, after the model is
 built in the calling process, as the chapter builds it), and on a Dask cluster that this
 benchmark starts itself: a scheduler and ``workers`` single-threaded worker processes
 (``distributed.LocalCluster``), started with the preload module that cluster workers are
-started with (:mod:`mechlib.hexflex.campaign.daskworker`). Each is timed from the first
+started with (:mod:`mechlib.campaign.daskworker`). Each is timed from the first
 submitted task to the last result; the cluster's start-up (scheduler, workers, their imports)
 is timed apart. The poses must be bit-identical. Printed:
 ``Dask / local pool: N.NNx (…, N runs, N workers)``.
@@ -39,8 +39,8 @@ def dask_vs_local(
     from distributed import LocalCluster
 
     from mechlib.bench.nonlinear import _chapter_spec
-    from mechlib.hexflex.campaign import daskworker, executors
-    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.campaign import daskworker, executors
+    from mechlib.campaign import experiments as ex
     from mechlib.hexflex.studies import leanmesh
     from mechlib.paths import fe_cache_dir
 

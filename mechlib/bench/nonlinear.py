@@ -12,6 +12,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from mechlib import published as pub
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.paths import REPO_ROOT
 
 #: Non-linear validation runs timed in-process, and on the two-process pool.
@@ -166,7 +167,7 @@ def newton_krylov(solver, forces: np.ndarray) -> dict:
 
 def _warm_worker(spec) -> int:
     """Build a worker's model and non-linear solver (what its first run would pay)."""
-    from mechlib.hexflex.campaign.experiments import solver_for
+    from mechlib.campaign.experiments import solver_for
 
     return solver_for(spec).model.n_dofs
 
@@ -175,7 +176,6 @@ def _chapter_spec():
     """The FE model of the DOE chapter: the geometry and mesh the hexflex notebook identified
     when the build holds its record (the chapter inputs the build wing passes), else the bench
     geometry at the default mesh (the second item says which)."""
-    from mechlib.hexflex.campaign import experiments as ex
     from mechlib.hexflex.fe.model import DEFAULT_MESH_FRACTION
     from mechlib.hexflex.geometry import HexFlexGeometry
     from mechlib.paths import records_dir
@@ -189,7 +189,7 @@ def _chapter_spec():
     else:
         g = HexFlexGeometry.from_dict(inputs["geometry"])
         fraction, source = float(inputs["mesh_fraction"]), "identified"
-    return ex.ModelSpec(g, mesh_size=fraction * g.narrowest), source
+    return ModelSpec(g, mesh_size=fraction * g.narrowest), source
 
 
 def nonlinear_run_counts() -> dict[str, int]:
@@ -209,8 +209,8 @@ def nonlinear_run_counts() -> dict[str, int]:
 
 def chapter_timings() -> dict[str, float | str]:
     """Cold wall times of the DOE chapter's FE work (no cache), measured and projected."""
-    from mechlib.hexflex.campaign import executors
-    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.campaign import executors
+    from mechlib.campaign import experiments as ex
 
     counts = nonlinear_run_counts()
 

@@ -32,7 +32,7 @@ REPEATS = 5
 def rom_timings() -> dict[str, float | str]:
     """Build the ROM on the chapter's model, time it against full non-linear runs."""
     from mechlib.bench.nonlinear import _chapter_spec
-    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.campaign import experiments as ex
     from mechlib.hexflex.rom.model import ReducedOrderModel
 
     spec, source = _chapter_spec()

@@ -1,6 +1,6 @@
 """The specification of a mechanism's FE model for campaigns: everything that defines it,
 picklable and hashable, with a stable text for cache keys (:meth:`MechanismSpec.key`) — what
-:class:`mechlib.hexflex.campaign.spec.ModelSpec` is for the HexFlex."""
+:class:`mechlib.hexflex.spec.ModelSpec` is for the HexFlex."""
 
 from __future__ import annotations
 

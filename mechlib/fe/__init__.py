@@ -7,5 +7,5 @@
 :mod:`.protocol` (what the solver needs of a model). Imports :mod:`mechlib.params` and
 :mod:`mechlib.blas` only: a mechanism's model (:mod:`mechlib.hexflex.fe`, :mod:`mechlib.compliant`)
 builds on it, never the reverse, so that the sources that define an FE result (the cache's
-fingerprint, :mod:`mechlib.hexflex.campaign.sources`) stay few.
+fingerprint, :mod:`mechlib.campaign.sources`) stay few.
 """

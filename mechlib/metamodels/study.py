@@ -156,7 +156,7 @@ def inverse_round_trip(
         Desired poses.
     truth : callable
         ``truth(forces) -> (ok, poses, ...)``: the indices of the runs the truth solved and their
-        poses, then anything (as :func:`mechlib.hexflex.campaign.experiments.run_keeping_failures`
+        poses, then anything (as :func:`mechlib.campaign.experiments.run_keeping_failures`
         returns; a run it could not solve is left out, not averaged in).
     span : sequence of 6 floats
         Each component's range [µm, µrad] that errors are divided by, > 0.

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.campaign import executors
+from mechlib.campaign.experiments import FailedRun, run_keeping_failures
 from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign import executors
-from mechlib.hexflex.campaign.experiments import FailedRun, run_keeping_failures
 from mechlib.parallelogram import published as pub
 from mechlib.parallelogram.comparison import applied_loads, as_rows, fe_poses
 from mechlib.params import check_matrix

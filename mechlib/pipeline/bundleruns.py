@@ -1,6 +1,6 @@
 """The FE runs of the book, from the results store, as tables of the data bundle.
 
-The results store (``store/``, :mod:`mechlib.hexflex.campaign.store`) holds every FE task the
+The results store (``store/``, :mod:`mechlib.campaign.store`) holds every FE task the
 book's notebooks read: the runs behind the tables and figures of chapter 2 and of the pages
 beyond it, the HexFlex's and the compliant layouts' (the parallelogram flexure).
 :func:`store_tables` lays them out as CSV texts:
@@ -31,8 +31,9 @@ from pathlib import Path
 import numpy as np
 
 from mechlib import published as pub
-from mechlib.hexflex.campaign.experiments import POSE_CONVENTIONS, SOLVE_STATS
-from mechlib.hexflex.campaign.store import Entry, StoreError, family, read_store
+from mechlib.campaign.experiments import POSE_CONVENTIONS, SOLVE_STATS
+from mechlib.campaign.store import Entry, StoreError, family, read_store
+from mechlib.fespecs import HEXFLEX, MECHANISM
 from mechlib.pipeline.bundle import csv_text
 
 _FORCES = [f"{f} [N]" for f in pub.FACTORS]
@@ -136,12 +137,12 @@ def store_tables(store: Path) -> dict[str, str]:
     ------
     StoreError
         A store that cannot be read as it is (checksum, keys), as
-        :func:`~mechlib.hexflex.campaign.store.read_store` says; or tables that do not hold as
+        :func:`~mechlib.campaign.store.read_store` says; or tables that do not hold as
         many linear and non-linear runs as the manifest counts.
     """
     manifest, entries = read_store(Path(store))
-    tables = _hexflex_tables([e for e in entries if family(e.spec) == "hexflex"])
-    layouts = [e for e in entries if family(e.spec) == "mechanism"]
+    tables = _hexflex_tables([e for e in entries if family(e.spec) == HEXFLEX.name])
+    layouts = [e for e in entries if family(e.spec) == MECHANISM.name]
     if layouts:
         tables.update(_layout_tables(layouts))
     counts = run_counts(tables)

@@ -88,8 +88,9 @@ def _cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -
     from the store's entry of its key, or if the re-run read no non-linear task."""
     import numpy as np
 
-    from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_sample, read_log
-    from mechlib.hexflex.campaign.store import read_store
+    from mechlib.campaign.cachecheck import AGREE_RTOL, check_sample, read_log
+    from mechlib.campaign.store import read_store
+    from mechlib.fespecs import HEXFLEX  # noqa: F401  (the FE families registered)
 
     read = read_log(rerun_dir / HIT_LOG)
     if not any(e["kind"] == "nonlinear" for e in read):

@@ -53,7 +53,7 @@ def rerun(
     ``fe_cache_from``, as a copy of the first run's FE cache: then every FE task it finds there
     is read, not solved, and logged to ``out/fe-cache-hits.jsonl`` (``$MECHLIB_FE_LOG``), so that
     a sample of them can be recomputed cold
-    (:func:`mechlib.hexflex.campaign.cachecheck.check_sample`;
+    (:func:`mechlib.campaign.cachecheck.check_sample`;
     ``make test`` does both, and saves the second run's FE solves). Notebooks
     run ``jobs`` at a time in chapter order (:data:`~mechlib.pipeline.chapters.CHAPTERS`), each
     after the chapters whose records give it inputs, read strictly from the re-run's own records

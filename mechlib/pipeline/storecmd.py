@@ -26,8 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign import store
-from mechlib.hexflex.campaign.taskcache import model_code_fingerprint
+from mechlib import fespecs as fespecs  # the FE families a store holds, registered
+from mechlib.campaign import store
 from mechlib.paths import DEFAULT_BUILD, REPO_ROOT, STORE_DIR
 from mechlib.pipeline.provenance import UNKNOWN, commit, cpu_model
 
@@ -53,7 +53,7 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     at least ``COLD_NONLINEAR`` runs drawn uniformly, without replacement, within each
     mechanism family in proportion to its runs, from a store whose share ``wrong_share`` of runs
     is wrong miss every wrong one, at most ``(1 − wrong_share)^COLD_NONLINEAR``
-    (:func:`~mechlib.hexflex.campaign.cachecheck.sample_uniform`).
+    (:func:`~mechlib.campaign.cachecheck.sample_uniform`).
 
     Raises
     ------
@@ -67,12 +67,12 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     if not (Path(folder) / store.MANIFEST).exists():
         return "- FE runs: every one computed by this build (no results store)."
     m = store.read_manifest(Path(folder))
-    if m["fingerprint"] != model_code_fingerprint():
+    if m["fingerprint"] != store.fingerprint():
         return (
             "- FE runs: every one computed by this build (the results store was computed by "
             "other FE code)."
         )
-    from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL
+    from mechlib.campaign.cachecheck import AGREE_RTOL
 
     runs = m["runs"]
     miss = (1.0 - wrong_share) ** COLD_NONLINEAR
@@ -201,7 +201,7 @@ def _pack(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from mechlib.hexflex.campaign.cachecheck import AGREE_RTOL, check_entries
+    from mechlib.campaign.cachecheck import AGREE_RTOL, check_entries
 
     _, entries = store.read_store(args.store)
     seed = int(commit().split("+")[0].strip()[:12] or "0", 16) if args.seed is None else args.seed
@@ -226,7 +226,7 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _rekey(args: argparse.Namespace) -> int:
-    from mechlib.hexflex.campaign.rekey import rekey_store
+    from mechlib.campaign.rekey import rekey_store
 
     manifest, n = rekey_store(args.store, clean_commit())
     old = manifest["rekeyed"]["from"]["fingerprints"]

@@ -9,7 +9,7 @@ of the model page's model, whose geometry and mesh fraction the build passes it 
 chapter's record (:data:`~mechlib.pipeline.chapters.CHAPTER_INPUTS`). :func:`add_snapshots` builds
 the same specification from the same record, reads each field from the build's FE cache or
 solves it (:func:`~mechlib.hexflex.rom.snapshots.nonlinear_states`, which caches it), and adds
-the 42 ``STATE`` tasks to the store (:func:`~mechlib.hexflex.campaign.store.add_states`): its
+the 42 ``STATE`` tasks to the store (:func:`~mechlib.campaign.store.add_states`): its
 runs kept byte for byte, the manifest's counts, checksum and ``snapshots`` provenance (commit,
 date, seconds, how many were solved and how many read) updated — from a committed work tree
 only, as ``make store``.
@@ -25,12 +25,13 @@ from pathlib import Path
 import numpy as np
 
 from mechlib import published as pub
-from mechlib.hexflex.campaign import store
-from mechlib.hexflex.campaign.executors import executor
-from mechlib.hexflex.campaign.experiments import STATE, ModelSpec, release_models
-from mechlib.hexflex.campaign.taskcache import cache_file
+from mechlib.campaign import store
+from mechlib.campaign.executors import executor
+from mechlib.campaign.experiments import STATE, release_models
+from mechlib.campaign.taskcache import cache_file
 from mechlib.hexflex.geometry import HexFlexGeometry
 from mechlib.hexflex.rom.snapshots import STATE_STEPS, nonlinear_states, state_key
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.hexflex.studies.leanmesh import lean_spec
 from mechlib.pipeline.execute import chapter_inputs
 from mechlib.pipeline.provenance import cpu_model

@@ -7,5 +7,5 @@ thesis's units; it provides what :class:`mechlib.fe.protocol.SolidModel` names, 
 non-linear solver runs on it), :mod:`.lean` (the lean model: a coarser mesh with the default
 model's pose definition). Imports :mod:`mechlib.fe`, :mod:`mechlib.blas`,
 :mod:`mechlib.hexflex.geometry` and :mod:`mechlib.params` only, so that the sources that define an
-FE result (the cache's fingerprint, :mod:`mechlib.hexflex.campaign.sources`) stay few.
+FE result (the cache's fingerprint, :mod:`mechlib.campaign.sources`) stay few.
 """

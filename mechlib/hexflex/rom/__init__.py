@@ -5,5 +5,5 @@ sampling and weighting of the elements), :mod:`.tensors` (the reduced internal f
 polynomials), :mod:`.model` (the ROM: build, solve, predict poses) and :mod:`.snapshots` (full
 non-linear fields of a force design, cached, to train it). Imports the solid FE core
 (:mod:`mechlib.fe`, :mod:`mechlib.blas`), :mod:`mechlib.hexflex.fe` and
-:mod:`mechlib.hexflex.campaign`.
+:mod:`mechlib.campaign`.
 """

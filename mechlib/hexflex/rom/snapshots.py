@@ -3,10 +3,10 @@ kind, cached, logged and stored like the campaign's runs.
 
 A reduced-order model is built from full solutions, not poses (:mod:`mechlib.hexflex.rom.model`):
 :func:`nonlinear_states` runs one ``STATE`` task per force vector
-(:func:`~mechlib.hexflex.campaign.experiments.task_poses`: the model's non-linear solver, one
+(:func:`~mechlib.campaign.experiments.task_poses`: the model's non-linear solver, one
 load step, the campaign's method) in an executor, as
-:func:`~mechlib.hexflex.campaign.experiments.run_experiments` does. Each field is cached under
-the campaign's task key (:func:`~mechlib.hexflex.campaign.taskcache.task_key`: the FE code's
+:func:`~mechlib.campaign.experiments.run_experiments` does. Each field is cached under
+the campaign's task key (:func:`~mechlib.campaign.taskcache.task_key`: the FE code's
 fingerprint, the model specification, the kind, the steps and the forces) as
 ``<key>.state.npy``, each task is logged to ``$MECHLIB_FE_LOG``, so ``make store`` packs the
 fields into the results store (``store/snapshots.npz``), ``store seed`` writes them back into a
@@ -21,9 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.executors import InProcessExecutor
-from mechlib.hexflex.campaign.experiments import ModelSpec, check_forces_design, task_poses
-from mechlib.hexflex.campaign.taskcache import (
+from mechlib.campaign.executors import InProcessExecutor
+from mechlib.campaign.experiments import task_poses
+from mechlib.campaign.taskcache import (
     STATE,
     cache_file,
     cache_result,
@@ -31,6 +31,7 @@ from mechlib.hexflex.campaign.taskcache import (
     model_code_fingerprint,
     task_key,
 )
+from mechlib.hexflex.spec import ModelSpec, check_forces_design
 
 #: load steps of a snapshot run (the solver's default: the whole load at once)
 STATE_STEPS = 1
@@ -38,7 +39,7 @@ STATE_STEPS = 1
 
 def state_key(spec: ModelSpec, forces: np.ndarray) -> str:
     """The task key of the converged field of ``spec`` under ``forces`` (6,) [N] (the campaign's
-    :func:`~mechlib.hexflex.campaign.taskcache.task_key` of a ``STATE`` task of one run)."""
+    :func:`~mechlib.campaign.taskcache.task_key` of a ``STATE`` task of one run)."""
     row = np.asarray(forces, dtype=float).reshape(1, -1)
     fingerprint = model_code_fingerprint(spec.TASK_MODULES)
     return task_key(spec.key(), STATE, row, STATE_STEPS, fingerprint)

@@ -6,6 +6,6 @@ against Timoshenko beam theory), :mod:`.cantilever` (the non-linear solver again
 non-linear departure split by parity in the load), :mod:`.family` (members of Eq 8's family at
 other thicknesses) and :mod:`.leanmesh` (the lean mesh against the default one on non-linear
 runs). Imports the solid FE core (:mod:`mechlib.fe`, :mod:`mechlib.blas`),
-:mod:`mechlib.hexflex.fe`, :mod:`mechlib.hexflex.campaign` and the top of :mod:`mechlib.hexflex`;
+:mod:`mechlib.hexflex.fe`, :mod:`mechlib.campaign` and the top of :mod:`mechlib.hexflex`;
 nothing below imports a study.
 """

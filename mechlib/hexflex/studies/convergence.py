@@ -11,9 +11,9 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.campaign.experiments import model_size, release_models
 from mechlib.hexflex import geometry as geo
-from mechlib.hexflex.campaign.compliance import compliance
-from mechlib.hexflex.campaign.experiments import ModelSpec, model_size, release_models
+from mechlib.hexflex.compliance import compliance
 from mechlib.hexflex.fe.model import (
     COARSE_WIDTHS,
     ELEMENTS,
@@ -21,6 +21,7 @@ from mechlib.hexflex.fe.model import (
 )
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA
 from mechlib.hexflex.identify import target_values
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.params import check_float
 
 
@@ -51,7 +52,7 @@ def study(
         Largest element of the stage and tabs, in narrowest flexure widths, in [1, 64].
     cache_dir : Path, optional
         FE cache: each model's compliance and DOF count are read from it when a build computed
-        them before (:mod:`mechlib.hexflex.campaign.compliance`), so no model is built then.
+        them before (:mod:`mechlib.hexflex.compliance`), so no model is built then.
 
     Returns
     -------

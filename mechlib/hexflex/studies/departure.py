@@ -24,7 +24,7 @@ from mechlib.params import check_matrix
 
 if TYPE_CHECKING:
     from mechlib.fe.nonlinear import NonlinearSolver
-    from mechlib.hexflex.campaign.experiments import ModelSpec
+    from mechlib.hexflex.spec import ModelSpec
 
 
 def parity_split(plus: object, minus: object, linear_plus: object) -> dict[str, np.ndarray]:
@@ -152,7 +152,7 @@ def linear_poses_for(spec: ModelSpec, forces: object, cache_dir: Path | None = N
     """:func:`linear_poses` of the non-linear solve that ``spec`` defines (its mesh and
     quadrature): at the model's own quadrature the (cached) linear model's poses; at another one
     those of the process's solver of ``spec``
-    (:func:`mechlib.hexflex.campaign.experiments.solver_for`,
+    (:func:`mechlib.campaign.experiments.solver_for`,
     the one an in-process run used; a Q2 solver of the identified model holds gigabytes, so
     none is built twice).
 
@@ -164,7 +164,7 @@ def linear_poses_for(spec: ModelSpec, forces: object, cache_dir: Path | None = N
         Actuator forces [N] within the model's bound.
     cache_dir : Path, optional
         FE cache: at the model's own quadrature the poses are ``forces @ C.T`` with the model's
-        compliance C read from it (:func:`mechlib.hexflex.campaign.compliance.compliance`, bit
+        compliance C read from it (:func:`mechlib.hexflex.compliance.compliance`, bit
         for bit what the model computes), so a build reading the cache builds no model.
 
     Returns
@@ -172,9 +172,9 @@ def linear_poses_for(spec: ModelSpec, forces: object, cache_dir: Path | None = N
     numpy.ndarray (n, 6)
         The linear stage poses [µm, µrad] on ``spec``'s mesh, with its quadrature.
     """
+    from mechlib.campaign.experiments import solver_for
     from mechlib.fe.sfepy_base import QUAD_ORDER
-    from mechlib.hexflex.campaign.compliance import compliance
-    from mechlib.hexflex.campaign.experiments import solver_for
+    from mechlib.hexflex.compliance import compliance
     from mechlib.hexflex.fe.model import check_forces
 
     if spec.quad_order == QUAD_ORDER:

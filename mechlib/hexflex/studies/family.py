@@ -17,9 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex import compliance as cc
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.campaign import compliance as cc
 from mechlib.hexflex.geometry import (
     AL7075_POISSON,
     AL7075_YOUNG_MPA,
@@ -239,7 +239,7 @@ def identify_member(
         Young's modulus [MPa] and Poisson's ratio of the FE and beam models.
     cache_dir : Path, optional
         FE cache of the compliances of the models built
-        (:mod:`mechlib.hexflex.campaign.compliance`).
+        (:mod:`mechlib.hexflex.compliance`).
     fe_free : sequence of str
         The dimensions the FE fit moves: at most four, each in ``free``.
 

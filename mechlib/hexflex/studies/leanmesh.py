@@ -18,11 +18,11 @@ from pathlib import Path
 
 import numpy as np
 
+from mechlib.hexflex import compliance as cc
 from mechlib.hexflex import frame
 from mechlib.hexflex import identify as ident
-from mechlib.hexflex.campaign import compliance as cc
-from mechlib.hexflex.campaign.experiments import ModelSpec
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.params import check_float, check_int, check_matrix
 
 #: Poses within this % of full scale, departures within this % of themselves.
@@ -65,7 +65,7 @@ def fit_lean(
         Flexure element size [mm] of the default mesh whose stage vertices carry the lean
         model's pose (:func:`mechlib.hexflex.fe.lean.lean_model`); default: that model's default.
     cache_dir : Path, optional
-        FE cache of the lean models' compliances (:mod:`mechlib.hexflex.campaign.compliance`).
+        FE cache of the lean models' compliances (:mod:`mechlib.hexflex.compliance`).
 
     Returns
     -------

@@ -22,7 +22,7 @@ from mechlib.params import check_increasing, check_int, check_matrix
 if TYPE_CHECKING:
     import concurrent.futures as cf
 
-    from mechlib.hexflex.campaign.experiments import ModelSpec
+    from mechlib.hexflex.spec import ModelSpec
 
 #: The linear model's error budget of the chapter's sweep [%]: where the linear model stops
 #: being "accurate" (the largest pointwise error of a pose component).
@@ -75,7 +75,7 @@ def sweep_runs(
     cache_dir: Path | None = None,
 ) -> dict[str, np.ndarray]:
     """:func:`linearity_sweep` of ``spec``'s model as FE experiments: each case one non-linear
-    run of :func:`mechlib.hexflex.campaign.experiments.run_experiments` (cached, so a build
+    run of :func:`mechlib.campaign.experiments.run_experiments` (cached, so a build
     seeded with stored results solves none), the linear poses from the cached compliance.
 
     Parameters
@@ -96,10 +96,10 @@ def sweep_runs(
 
     Raises
     ------
-    mechlib.hexflex.campaign.experiments.ExperimentError
+    mechlib.campaign.experiments.ExperimentError
         When a case does not converge (named).
     """
-    from mechlib.hexflex.campaign import experiments as ex
+    from mechlib.campaign import experiments as ex
     from mechlib.hexflex.studies.departure import linear_poses_for
 
     amps, forces, case_steps = _cases(direction, amplitudes, steps)

@@ -91,7 +91,7 @@ FIG1 = MethodFigure(
             (("published_doe", "Table 4"), ("virtual_experiments", "Table 4")),
             (
                 "mechlib.doe.centered_l2_discrepancy_squared",
-                "mechlib.hexflex.campaign.experiments.run_experiments",
+                "mechlib.campaign.experiments.run_experiments",
             ),
         ),
         MethodStep(

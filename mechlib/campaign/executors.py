@@ -1,7 +1,7 @@
 """Where FE experiments run: in-process, on a pool of worker processes that share the cores, or
 on a Dask cluster.
 
-:func:`mechlib.hexflex.campaign.experiments.run_experiments` takes any
+:func:`mechlib.campaign.experiments.run_experiments` takes any
 :class:`concurrent.futures.Executor`. :func:`executor` gives the one a notebook asked for: with
 ``$MECHLIB_DASK_SCHEDULER`` set to a scheduler's address (``make store DASK_SCHEDULER=…``), every
 campaign goes to that cluster (:func:`dask_executor`), whatever its ``workers``.
@@ -71,7 +71,7 @@ def dask_executor(address: object, timeout: float = DASK_TIMEOUT_S) -> cf.Execut
 
     ``distributed``'s ``Client(address).get_executor()``; shutting the executor down (leaving
     its ``with`` block) closes the client, not the cluster. Every worker of the cluster gets the
-    :class:`~mechlib.hexflex.campaign.daskworker.CampaignWorker` plugin: glibc's memory reuse
+    :class:`~mechlib.campaign.daskworker.CampaignWorker` plugin: glibc's memory reuse
     that Dask's nanny switches off (1.6 times the time a non-linear run takes, measured), and
     one BLAS thread.
 
@@ -97,7 +97,7 @@ def dask_executor(address: object, timeout: float = DASK_TIMEOUT_S) -> cf.Execut
             f"no Dask scheduler answers at {address} within {timeout:g} s: start one (`dask "
             f"scheduler` and `dask worker <address>`) or unset {DASK_ENV} to run locally"
         ) from err
-    from mechlib.hexflex.campaign.daskworker import CampaignWorker
+    from mechlib.campaign.daskworker import CampaignWorker
 
     client.register_plugin(CampaignWorker())  # every worker, present and future (see its doc)
     return _DaskExecutor(client)

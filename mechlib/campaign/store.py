@@ -1,15 +1,15 @@
 """A results store: the pose-level results of FE tasks, kept as one versioned data set.
 
-The FE cache (:mod:`mechlib.hexflex.campaign.experiments`) holds one ``<key>.npy`` file per task,
+The FE cache (:mod:`mechlib.campaign.experiments`) holds one ``<key>.npy`` file per task,
 where the key digests the model specification, the kind of analysis, the load steps, the forces and
 the sources that define a result
-(:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`).
+(:func:`~mechlib.campaign.taskcache.model_code_fingerprint`).
 A store is a folder with two or three files: ``results.npz`` (every task's inputs and poses, a
 few bytes a run; no displacement field), ``snapshots.npz`` when it holds ``STATE`` tasks (the
 converged displacement fields a reduced-order model is built from,
 :mod:`mechlib.hexflex.rom.snapshots`: 8 bytes a DOF) and ``manifest.json`` (format version, the
 code fingerprint, a SHA-256 of each array file, counts, and what the build wing adds: commit,
-date, processor, time); :mod:`~mechlib.hexflex.campaign.storefiles` lays out the array files.
+date, processor, time); :mod:`~mechlib.campaign.storefiles` lays out the array files.
 :func:`seed_cache` writes its tasks into an FE cache, where a build reads them as it reads any
 cached task; a task missing from the store is computed and cached as before.
 :func:`add_states` adds ``STATE`` tasks to a store without regenerating its runs.
@@ -22,12 +22,14 @@ specification) or whose forces lie outside the model's force bound, and a store 
 other FE code than the current one. Writing is atomic: a new store replaces the old one whole,
 or not at all.
 
-Two mechanisms share a store: the HexFlex's tasks (:class:`ModelSpec`, six actuator forces) and
-those of a compliant layout (:class:`~mechlib.compliant.spec.MechanismSpec`, its own load ports
-and bounds). Each family's keys carry the fingerprint of its own code, so the manifest keeps one
-per family (:data:`FAMILIES`); the HexFlex's is also ``fingerprint``. A store whose HexFlex
-fingerprint is not the current code's is refused; its entries of a family whose code changed
-since are not seeded (the build computes them again). Format 4 (cache format 4) keys on the
+Several families of specifications share a store (:mod:`mechlib.campaign.spec`'s registry: the
+HexFlex's ``ModelSpec``, six actuator forces; a compliant layout's ``MechanismSpec``, its own
+load ports and bounds). Each family's keys carry the fingerprint of its own code, so the
+manifest keeps one per family (:func:`fingerprints`); the primary family's is also
+``fingerprint``. A store whose primary fingerprint is not the current code's is refused; its
+entries of another family whose code changed since are not seeded (the build computes them
+again). The store names no family: a task's family and bounds come from its key text through the
+registry. Format 4 (cache format 4) keys on the
 code's normalised syntax trees, so a docstring or a comment edited keeps the store; a store of
 an older format is refused by its version.
 """
@@ -43,9 +45,9 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign.experiments import STATE
-from mechlib.hexflex.campaign.storefiles import (
+from mechlib.campaign.experiments import STATE
+from mechlib.campaign.spec import families, family_of, primary, spec_from_key
+from mechlib.campaign.storefiles import (
     REGENERATE,
     RESULTS,
     SNAPSHOTS_SHA,
@@ -58,28 +60,30 @@ from mechlib.hexflex.campaign.storefiles import (
     write_arrays,
     write_states,
 )
-from mechlib.hexflex.campaign.storefiles import SNAPSHOTS as SNAPSHOTS  # re-exported
-from mechlib.hexflex.campaign.taskcache import cache_file, model_code_fingerprint, task_key
-from mechlib.hexflex.fe.model import MAX_FORCE_N
+from mechlib.campaign.storefiles import SNAPSHOTS as SNAPSHOTS  # re-exported
+from mechlib.campaign.taskcache import cache_file, model_code_fingerprint, task_key
 
 #: Format of ``manifest.json`` and ``results.npz`` this code writes and reads (:data:`READS`);
 #: 4: keys of cache format 4 (the fingerprint digests the FE code's syntax trees), a format-3
-#: store is re-keyed to it by :func:`mechlib.hexflex.campaign.rekey.rekey_store`
+#: store is re-keyed to it by :func:`mechlib.campaign.rekey.rekey_store`
 STORE_VERSION = 4
 READS = (4,)
-#: the families of tasks a store holds: the HexFlex's, a compliant layout's
-FAMILIES: tuple[str, ...] = ("hexflex", "mechanism")
 
 
 def family(spec: str) -> str:
-    """The family (:data:`FAMILIES`) of a task's specification text."""
-    return "mechanism" if spec.startswith('{"mechanism"') else "hexflex"
+    """The family (:func:`mechlib.campaign.spec.families`) of a task's specification text."""
+    return family_of(spec)
 
 
 def fingerprints() -> dict[str, str]:
-    """The current code's fingerprint of each family's tasks."""
-    return {"hexflex": model_code_fingerprint(),
-            "mechanism": model_code_fingerprint(MechanismSpec.TASK_MODULES)}  # fmt: skip
+    """The current code's fingerprint of each registered family's tasks."""
+    return {f.name: model_code_fingerprint(f.spec.TASK_MODULES) for f in families()}
+
+
+def fingerprint() -> str:
+    """The current code's fingerprint of the primary family's tasks (a manifest's
+    ``fingerprint``)."""
+    return model_code_fingerprint(primary().spec.TASK_MODULES)
 
 
 MANIFEST = "manifest.json"
@@ -138,7 +142,7 @@ def write_store(entries: list[Entry], folder: Path, provenance: dict | None = No
     try:
         manifest = {
             "version": STORE_VERSION,
-            "fingerprint": model_code_fingerprint(),
+            "fingerprint": fingerprint(),
             "fingerprints": fingerprints(),
             **write_arrays(tmp, entries),
             **counts(entries),
@@ -246,11 +250,12 @@ def read_store(folder: Path) -> tuple[dict, list[Entry]]:
     folder = Path(folder)
     manifest = read_manifest(folder)
     entries = load_entries(folder, manifest)
+    current, lead = fingerprints(), primary().name
     for e in entries:
-        fingerprint = manifest["fingerprints"].get(family(e.spec), "")
-        if family(e.spec) == "hexflex" or fingerprint == fingerprints()[family(e.spec)]:
-            _check_entry(e)  # a layout's entry of older code: not seeded, its bounds unread
-        expected = task_key(e.spec, e.kind, e.forces, e.steps, fingerprint)
+        stored = manifest["fingerprints"].get(family(e.spec), "")
+        if family(e.spec) == lead or stored == current.get(family(e.spec)):
+            _check_entry(e)  # another family's entry of older code: not seeded, bounds unread
+        expected = task_key(e.spec, e.kind, e.forces, e.steps, stored)
         if expected != e.key:
             raise StoreError(
                 f"store entry {e.key} does not match its own inputs (specification, forces or "
@@ -274,27 +279,22 @@ def load_entries(folder: Path, manifest: dict) -> list[Entry]:
 
 
 @lru_cache(maxsize=64)
-def _mechanism(spec: str) -> MechanismSpec:
-    return MechanismSpec.from_key(spec)
+def _spec(text: str) -> object:
+    return spec_from_key(text)
 
 
 def _check_entry(e: Entry) -> None:
-    """Refuse an entry whose loads lie beyond its model's bounds or whose results are not
-    finite."""
+    """Refuse an entry whose loads lie beyond its model's bounds (its specification's
+    ``check_design``) or whose results are not finite."""
     bad = not np.all(np.isfinite(e.results))
-    if family(e.spec) == "hexflex":
-        bad = bad or np.abs(e.forces).max(initial=0.0) > MAX_FORCE_N
-        bound = f"±{MAX_FORCE_N} N"
-    else:
-        try:
-            _mechanism(e.spec).check_design(e.forces)
-        except (ValueError, KeyError, TypeError):
-            bad = True
-        bound = "its load ports' bounds"
+    try:
+        _spec(e.spec).check_design(e.forces)
+    except (ValueError, KeyError, TypeError):
+        bad = True
     if bad:
         raise StoreError(
-            f"store entry {e.key}: loads beyond {bound} or results not finite: regenerate the "
-            f"store with `{REGENERATE}`"
+            f"store entry {e.key}: loads beyond its model's bounds or results not finite: "
+            f"regenerate the store with `{REGENERATE}`"
         )
 
 
@@ -305,12 +305,12 @@ def seed_cache(folder: Path, cache_dir: Path) -> int:
     Raises
     ------
     StoreError
-        As :func:`read_store`, and when the store's HexFlex tasks were computed by other FE code
-        than the current (its fingerprint differs): one line, with the entry count and the
-        command. Entries of a compliant layout computed by other code are left out, not refused.
+        As :func:`read_store`, and when the store's primary family's tasks were computed by other
+        FE code than the current (its fingerprint differs): one line, with the entry count and
+        the command. Entries of another family computed by other code are left out, not refused.
     """
     manifest, entries = read_store(folder)
-    now = model_code_fingerprint()
+    now = fingerprint()
     if manifest["fingerprint"] != now:
         raise StoreError(
             f"the {len(entries)} entries of {folder} were computed by other FE code "

@@ -2,7 +2,7 @@
 
 An identification builds one FE model per step only to read its 6 × 6 compliance — the poses
 under the six unit actuator forces. Computed here as one linear task of
-:func:`~mechlib.hexflex.campaign.experiments.run_experiments` (the forces ``np.eye(6)``), a
+:func:`~mechlib.campaign.experiments.run_experiments` (the forces ``np.eye(6)``), a
 compliance is cached under its task key like any FE result, logged for the results store, and
 read back on the next build instead of meshing and factorising the model again. In one process
 the numbers are bit for bit those of :meth:`HexFlexModel.compliance` (the same back-substitution
@@ -17,9 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.experiments import ModelSpec, release_models, run_experiments
+from mechlib.campaign.experiments import release_models, run_experiments
 from mechlib.hexflex.fe.model import check_settings
 from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.hexflex.spec import ModelSpec
 from mechlib.params import check_float
 
 SpecMaker = Callable[[HexFlexGeometry], ModelSpec]

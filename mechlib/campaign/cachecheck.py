@@ -3,7 +3,7 @@ a fresh process computes, bit for bit.
 
 The determinism re-run (:mod:`mechlib.pipeline.rerun`) starts from the first run's FE cache and
 logs every hit (``$MECHLIB_FE_LOG``, written by
-:func:`mechlib.hexflex.campaign.experiments.run_experiments`);
+:func:`mechlib.campaign.experiments.run_experiments`);
 :func:`check_sample` then recomputes a seeded sample of the logged tasks in this process and
 compares each with its cached file (agreement within ``AGREE_RTOL``). The records check every
 seeded stream and every computation downstream of the FE solves; the sample checks the solves.
@@ -19,17 +19,11 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign.executors import worker_pool
-from mechlib.hexflex.campaign.experiments import (
-    POSE_COLUMNS,
-    TASK_KINDS,
-    ModelSpec,
-    release_models,
-    task_poses,
-)
-from mechlib.hexflex.campaign.store import family
-from mechlib.hexflex.geometry import HexFlexGeometry
+from mechlib.campaign.executors import worker_pool
+from mechlib.campaign.experiments import POSE_COLUMNS, TASK_KINDS, release_models, task_poses
+from mechlib.campaign.spec import Spec
+from mechlib.campaign.spec import family_of as family
+from mechlib.campaign.spec import spec_from_key as spec_from_key  # re-exported
 from mechlib.params import check_int
 
 #: seed of the sample of logged tasks that :func:`check_sample` recomputes
@@ -71,8 +65,8 @@ def read_log(path: Path) -> list[dict]:
     Returns
     -------
     list of dict
-        Keys ``file`` (cache file name), ``spec`` (:meth:`ModelSpec.key` text), ``kind``,
-        ``steps`` and ``forces`` (rows of 6 forces [N]).
+        Keys ``file`` (cache file name), ``spec`` (a specification's ``key()`` text),
+        ``kind``, ``steps`` and ``forces`` (rows of loads).
     """
     seen: dict[str, dict] = {}
     for line in Path(path).read_text().splitlines():
@@ -83,23 +77,13 @@ def read_log(path: Path) -> list[dict]:
     return list(seen.values())
 
 
-def spec_from_key(text: str) -> ModelSpec | MechanismSpec:
-    """The :class:`ModelSpec` (or, for another mechanism, the
-    :class:`~mechlib.compliant.spec.MechanismSpec`) whose ``key()`` is ``text``."""
-    fields = json.loads(text)
-    if "mechanism" in fields:
-        return MechanismSpec.from_key(text)
-    geometry = HexFlexGeometry(**fields.pop("geometry"))
-    return ModelSpec(geometry=geometry, **fields)
-
-
 def _one_per_family(specs: list[str], order: np.ndarray) -> list[int]:
     """``order`` (indices into ``specs``) with the first model of each mechanism family moved
-    to the front, so that a sample smaller than the number of models still draws from both the
-    HexFlex and a compliant layout when both are logged."""
+    to the front, so that a sample smaller than the number of models still draws from every
+    family logged (the HexFlex, a compliant layout …)."""
     first: dict[str, int] = {}
     for g in order.tolist():
-        first.setdefault(family(specs[g]), g)
+        first.setdefault(family(specs[g]) if specs[g] else "", g)  # "": a log without specs
     lead = sorted(first.values(), key=order.tolist().index)
     return lead + [g for g in order.tolist() if g not in lead]
 
@@ -208,7 +192,7 @@ def check_entries(
     entries: list, per_kind: dict[str, int], seed: int, workers: int = 1
 ) -> list[CacheCheck]:
     """Recompute a seeded sample of results-store entries
-    (:class:`mechlib.hexflex.campaign.store.Entry`), drawn uniformly over each kind's tasks
+    (:class:`mechlib.campaign.store.Entry`), drawn uniformly over each kind's tasks
     (:func:`sample_uniform`), and compare each with its stored poses.
 
     Parameters
@@ -237,12 +221,13 @@ def _recompute(tasks: list[tuple], workers: int = 1) -> list[CacheCheck]:
     """Each (file, spec text, kind, forces, steps, cached results) task solved now and its poses
     compared (the solve statistics after a non-linear run's poses are not), in the order given;
     with ``workers`` > 1 the models are shared out among that many worker processes
-    (:func:`~mechlib.hexflex.campaign.executors.worker_pool`: the cores shared out among them),
+    (:func:`~mechlib.campaign.executors.worker_pool`: the cores shared out among them),
     every task of a model in the same one."""
     workers = check_int("workers", workers, low=1, high=64)
     keys = list(dict.fromkeys(t[1] for t in tasks))
+    specs = {k: spec_from_key(k) for k in keys}  # here: a worker's registry may be empty
     if workers == 1 or len(keys) < 2:
-        by_file = {c.file: c for c in _recompute_models(tasks)}
+        by_file = {c.file: c for c in _recompute_models(tasks, specs)}
         return [by_file[t[0]] for t in tasks]
     # the models dealt out largest first (by task count) to the least loaded process
     bins: list[list[str]] = [[] for _ in range(min(workers, len(keys)))]
@@ -252,15 +237,19 @@ def _recompute(tasks: list[tuple], workers: int = 1) -> list[CacheCheck]:
         bins[i].append(key)
         load[i] += sum(t[1] == key for t in tasks)
     with worker_pool(len(bins)) as pool:
-        parts = pool.map(_recompute_models, [[t for t in tasks if t[1] in b] for b in bins])
+        parts = pool.map(
+            _recompute_models,
+            [[t for t in tasks if t[1] in b] for b in bins],
+            [{k: specs[k] for k in b} for b in bins],
+        )
         by_file = {c.file: c for part in parts for c in part}
     return [by_file[t[0]] for t in tasks]
 
 
-def _recompute_models(tasks: list[tuple]) -> list[CacheCheck]:
+def _recompute_models(tasks: list[tuple], specs: dict[str, Spec]) -> list[CacheCheck]:
     out: list[CacheCheck] = []
     for key in dict.fromkeys(t[1] for t in tasks):  # one model at a time (memory)
-        spec = spec_from_key(key)
+        spec = specs[key]
         for file, _, kind, forces, steps, cached in (t for t in tasks if t[1] == key):
             fresh = task_poses(spec, kind, forces, steps)
             if fresh.shape != cached.shape:

@@ -1,6 +1,6 @@
 """A digest of a Python module's code, not of its text: what the FE cache's keys hold.
 
-:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint` digests the modules that define
+:func:`~mechlib.campaign.taskcache.model_code_fingerprint` digests the modules that define
 an FE result. Were it to digest their bytes, fixing a typo in a docstring would throw away every
 cached run and the results store. It digests each module's syntax tree instead, normalised by
 :func:`normalise`:

@@ -2,7 +2,7 @@
 
 Cache format 3 keyed every task on :func:`byte_fingerprint`, a digest of the FE closure's bytes
 and module names; format 4 keys it on
-:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`, a digest of the same code's
+:func:`~mechlib.campaign.taskcache.model_code_fingerprint`, a digest of the same code's
 normalised syntax trees. A format-3 store computed by code byte for byte the current one was
 therefore computed by code whose format-4 fingerprint is the current one: its runs need new keys,
 not new solves. :func:`rekey_store` checks exactly that — the store's fingerprints are the
@@ -24,10 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.compliant.spec import MechanismSpec
-from mechlib.hexflex.campaign import store
-from mechlib.hexflex.campaign.sources import TASK_MODULES, model_modules
-from mechlib.hexflex.campaign.taskcache import _defines_code, task_key
+from mechlib.campaign import store
+from mechlib.campaign.sources import model_modules
+from mechlib.campaign.spec import families, primary
+from mechlib.campaign.taskcache import _defines_code, task_key
 
 #: the cache and store formats whose keys digest the FE code's bytes
 OLD_CACHE_VERSION = OLD_STORE_VERSION = 3
@@ -41,7 +41,7 @@ WHY = (
 PROVENANCE = ("commit", "date", "processor", "python", "seconds", "workers", "from_empty")
 
 
-def byte_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
+def byte_fingerprint(task_modules: tuple[str, ...]) -> str:
     """The format-3 fingerprint of the current code: a digest of the names and bytes of the
     modules :func:`model_modules` finds (imports under ``if TYPE_CHECKING:`` followed, as
     format 3 did), a package ``__init__`` holding only its docstring left out.
@@ -67,9 +67,8 @@ def byte_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
 
 
 def byte_fingerprints() -> dict[str, str]:
-    """:func:`byte_fingerprint` of each family's tasks (:data:`store.FAMILIES`)."""
-    return {"hexflex": byte_fingerprint(),
-            "mechanism": byte_fingerprint(MechanismSpec.TASK_MODULES)}  # fmt: skip
+    """:func:`byte_fingerprint` of each registered family's tasks."""
+    return {f.name: byte_fingerprint(f.spec.TASK_MODULES) for f in families()}
 
 
 def rekey_store(folder: Path, commit: str) -> tuple[dict, int]:
@@ -102,8 +101,9 @@ def rekey_store(folder: Path, commit: str) -> tuple[dict, int]:
     folder = Path(folder)
     manifest = store.read_manifest(folder, reads=(OLD_STORE_VERSION,))
     old = byte_fingerprints()
-    stored = manifest.get("fingerprints", {"hexflex": manifest["fingerprint"]})
-    if stored != old or manifest["fingerprint"] != old["hexflex"]:
+    lead = primary().name
+    stored = manifest.get("fingerprints", {lead: manifest["fingerprint"]})
+    if stored != old or manifest["fingerprint"] != old[lead]:
         raise store.StoreError(
             f"the store {folder} was computed by FE code other than the current one (its "
             f"fingerprints {stored}, the current code's bytes {old}): it cannot be re-keyed; "

@@ -1,7 +1,7 @@
 """Which source files define an FE result: the modules a task runs and all they import.
 
-:mod:`mechlib.hexflex.campaign.experiments` keys its disk cache on these sources' code
-(:func:`~mechlib.hexflex.campaign.taskcache.model_code_fingerprint`), so that a change to the
+:mod:`mechlib.campaign.experiments` keys its disk cache on these sources' code
+(:func:`~mechlib.campaign.taskcache.model_code_fingerprint`), so that a change to the
 mesher, the model or the solver can never return results computed by the old code.
 """
 
@@ -11,23 +11,12 @@ import ast
 import importlib.util
 from pathlib import Path
 
-from mechlib.hexflex.campaign.codedigest import internal_target, is_internal, is_typing_block
-
-#: The modules a task runs (the linear model, the lean model, the non-linear solver, the
-#: finite-rotation pose).
-TASK_MODULES: tuple[str, ...] = (
-    "mechlib.hexflex.fe.model",
-    "mechlib.hexflex.fe.lean",
-    "mechlib.fe.nonlinear",
-    "mechlib.fe.finite_pose",
-)
+from mechlib.campaign.codedigest import internal_target, is_internal, is_typing_block
 
 
-def model_modules(
-    task_modules: tuple[str, ...] = TASK_MODULES, *, format3: bool = False
-) -> tuple[str, ...]:
-    """The mechlib modules a task's results depend on: ``task_modules`` (default the HexFlex's
-    ``TASK_MODULES``; a mechanism's spec names its own) and every mechlib module they import,
+def model_modules(task_modules: tuple[str, ...], *, format3: bool = False) -> tuple[str, ...]:
+    """The mechlib modules a task's results depend on: ``task_modules`` (a specification's
+    ``TASK_MODULES``) and every mechlib module they import,
     directly or not, at module level or inside a function (read from the sources' import
     statements), with the packages that hold them (importing a module runs its packages'
     ``__init__``), sorted. An import under ``if TYPE_CHECKING:`` never runs and is not followed.
@@ -39,7 +28,7 @@ def model_modules(
     format3 : bool
         The closure that cache format 3 digested instead: imports under ``if TYPE_CHECKING:``
         followed, a package only where it is imported from (only
-        :func:`mechlib.hexflex.campaign.rekey.byte_fingerprint` asks for it).
+        :func:`mechlib.campaign.rekey.byte_fingerprint` asks for it).
 
     Returns
     -------

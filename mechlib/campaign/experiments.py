@@ -1,4 +1,4 @@
-"""Virtual experiments on the HexFlex model: a design of actuator forces in, stage poses out.
+"""Virtual experiments on an FE model: a design of loads in, stage poses out.
 
 :func:`run_experiments` splits a design into tasks (blocks of rows for the linear model, one row
 per task for the non-linear one), hands them to any :class:`concurrent.futures.Executor` — the
@@ -6,8 +6,10 @@ default runs them in-process; a dask cluster's ``client.get_executor()`` or a
 ``ProcessPoolExecutor`` work the same way — and caches each finished task on disk under a key
 made of the model specification, the kind of analysis and the task's forces. A task that fails
 is reported by experiment index, and every completed result is kept (in the cache and on the
-exception). Workers build the FE model from a picklable :class:`ModelSpec`
-(:mod:`~mechlib.hexflex.campaign.spec`) and keep it for the life of the process, so each worker
+exception). Workers build the FE model from a picklable specification
+(:class:`~mechlib.campaign.spec.Spec`: the HexFlex's :class:`mechlib.hexflex.spec.ModelSpec`, a
+compliant layout's :class:`mechlib.compliant.spec.MechanismSpec`) and keep it for the life of the
+process, so each worker
 pays the assembly and factorisation once; a task runs its BLAS on one thread wherever it runs.
 """
 
@@ -15,31 +17,25 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from mechlib.blas import one_thread
-from mechlib.compliant.model import MechanismModel
-from mechlib.compliant.spec import MechanismSpec
-from mechlib.fe.finite_pose import CONVENTIONS, finite_poses
-from mechlib.fe.nonlinear import NonlinearSolver
-from mechlib.fe.sfepy_base import QUAD_ORDER
-from mechlib.hexflex.campaign.executors import InProcessExecutor, worker_count
-from mechlib.hexflex.campaign.spec import MESHES as MESHES  # re-exported: notebooks check it
-from mechlib.hexflex.campaign.spec import ModelSpec
-from mechlib.hexflex.campaign.spec import check_forces_design as check_forces_design
-from mechlib.hexflex.campaign.taskcache import STATE as STATE
-from mechlib.hexflex.campaign.taskcache import (
+from mechlib.campaign.executors import InProcessExecutor, worker_count
+from mechlib.campaign.spec import Spec
+from mechlib.campaign.taskcache import STATE as STATE
+from mechlib.campaign.taskcache import (
     cache_result,
     cached_result,
     log_task,
     model_code_fingerprint,
     task_key,
 )
-from mechlib.hexflex.fe.model import HexFlexModel
+from mechlib.fe.finite_pose import CONVENTIONS, finite_poses
+from mechlib.fe.nonlinear import NonlinearSolver
 from mechlib.params import check_choice, check_int
 from mechlib.progress import Progress
 
@@ -67,20 +63,22 @@ POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 RESULT_COLUMNS = {**POSE_COLUMNS, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
-#: a campaign's model: the HexFlex's specification or a compliant layout's
-Spec = ModelSpec | MechanismSpec
+#: a specification's fields that set only its non-linear solve, not its model: the runner shares
+#: one model among specifications that differ in these alone (each at its field's default)
+SOLVE_FIELDS: tuple[str, ...] = ("quad_order",)
 KIND_NAMES = {"linear": "linear FE runs", "nonlinear": "non-linear FE runs", "size": "model sizes"}
 """What a campaign of each kind is called in its progress reports."""
 
 
-def model_for(spec: Spec) -> HexFlexModel | MechanismModel:
+def model_for(spec: Spec) -> object:
     """The model of ``spec``, built once per process (one model for every ``quad_order``: the
-    linear model's quadrature is fixed)."""
-    return _model(replace(spec, quad_order=QUAD_ORDER) if isinstance(spec, ModelSpec) else spec)
+    linear model's quadrature is fixed; a :data:`SOLVE_FIELDS` field is set to its default)."""
+    solve_only = {f.name: f.default for f in fields(spec) if f.name in SOLVE_FIELDS}
+    return _model(replace(spec, **solve_only))
 
 
 @lru_cache(maxsize=4)
-def _model(spec: Spec) -> HexFlexModel | MechanismModel:
+def _model(spec: Spec) -> object:
     with one_thread():  # the same bits wherever it is built
         return spec.build()
 
@@ -136,8 +134,7 @@ class FailedRun:
 def solver_for(spec: Spec) -> NonlinearSolver:
     """The non-linear solver of ``spec``'s model, built once per process (on
     :func:`model_for`'s model)."""
-    solver = getattr(spec, "SOLVER", NonlinearSolver)  # a mechanism's spec names its own
-    return solver(model_for(spec), quad_order=spec.quad_order)
+    return spec.SOLVER(model_for(spec), quad_order=spec.quad_order)
 
 
 def _task(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
@@ -196,11 +193,13 @@ def run_experiments(
 
     Parameters
     ----------
-    spec : ModelSpec or MechanismSpec
-        The FE model (the HexFlex's, or a compliant layout's: its design has one column per
-        load port, in the ports' units).
-    design : array_like (n, 6)
-        Actuator forces per run, columns T1D1 … T3D2, within ±``MAX_FORCE_N``.
+    spec : Spec
+        The FE model (:class:`mechlib.campaign.spec.Spec`: the HexFlex's ``ModelSpec``, or a
+        compliant layout's ``MechanismSpec``).
+    design : array_like (n, spec.n_loads)
+        Loads per run (the HexFlex's: actuator forces T1D1 … T3D2 within ±``MAX_FORCE_N`` N; a
+        layout's: one column per load port, in the ports' units), as ``spec.check_design``
+        accepts them.
     kind : {"linear", "nonlinear", "size"}
         Linear statics (batched back-substitutions), the geometrically non-linear solve, or
         (:func:`model_size`) the model's number of free DOFs in one column.

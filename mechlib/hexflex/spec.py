@@ -1,5 +1,7 @@
-"""The specification of an FE model of a campaign: everything that defines it, picklable and
-hashable, with a stable text for cache keys (:meth:`ModelSpec.key`)."""
+"""The specification of a HexFlex FE model for campaigns (:class:`mechlib.campaign.spec.Spec`):
+everything that defines it, picklable and hashable, with a stable text for cache keys
+(:meth:`ModelSpec.key`) — what :class:`mechlib.compliant.spec.MechanismSpec` is for a compliant
+layout. :mod:`mechlib.fespecs` registers it as the family ``hexflex``."""
 
 from __future__ import annotations
 
@@ -10,8 +12,8 @@ from typing import ClassVar
 
 import numpy as np
 
+from mechlib.fe.nonlinear import NonlinearSolver
 from mechlib.fe.sfepy_base import QUAD_ORDER
-from mechlib.hexflex.campaign.sources import TASK_MODULES
 from mechlib.hexflex.fe.lean import lean_model
 from mechlib.hexflex.fe.model import HexFlexModel, check_forces
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, HexFlexGeometry
@@ -19,6 +21,14 @@ from mechlib.params import check_choice, check_float, check_int
 
 #: FE mesh recipes a :class:`ModelSpec` names
 MESHES: tuple[str, ...] = ("default", "lean")
+#: The modules a HexFlex task runs (the linear model, the lean model, the non-linear solver, the
+#: finite-rotation pose): its cache keys' code fingerprint follows their imports.
+TASK_MODULES: tuple[str, ...] = (
+    "mechlib.hexflex.fe.model",
+    "mechlib.hexflex.fe.lean",
+    "mechlib.fe.nonlinear",
+    "mechlib.fe.finite_pose",
+)
 
 
 @dataclass(frozen=True)
@@ -46,6 +56,8 @@ class ModelSpec:
     SOLVE_METHOD: ClassVar[str] = "modified"
     #: the modules a task runs (its cache keys' code fingerprint follows their imports)
     TASK_MODULES: ClassVar[tuple[str, ...]] = TASK_MODULES
+    #: the non-linear solver a campaign builds on the model
+    SOLVER: ClassVar[type] = NonlinearSolver
     #: a design's columns: the six actuator forces
     n_loads: ClassVar[int] = 6
 
@@ -64,6 +76,12 @@ class ModelSpec:
             if self.mesh == "lean":
                 raise ValueError(f"mesh 'lean' sets its own grading: coarsening must be None, "
                                  f"got {self.coarsening!r}")  # fmt: skip
+
+    @classmethod
+    def from_key(cls, text: str) -> ModelSpec:
+        """The specification whose :meth:`key` is ``text``."""
+        fields = json.loads(text)
+        return cls(geometry=HexFlexGeometry(**fields.pop("geometry")), **fields)
 
     def key(self) -> str:
         """Stable text of the specification (cache key ingredient; a ``coarsening`` of None is

@@ -1,4 +1,4 @@
-"""The files of a results store (:mod:`mechlib.hexflex.campaign.store`): its tasks packed into
+"""The files of a results store (:mod:`mechlib.campaign.store`): its tasks packed into
 arrays and back, their checksums and counts, and the atomic replacement of a store.
 
 ``results.npz`` holds every task's inputs (keys, specifications, load steps, loads) and its
@@ -18,8 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.experiments import KINDS, RESULT_COLUMNS, STATE, TASK_KINDS
-from mechlib.hexflex.campaign.taskcache import cache_file
+from mechlib.campaign.experiments import KINDS, RESULT_COLUMNS, STATE, TASK_KINDS
+from mechlib.campaign.taskcache import cache_file
 
 RESULTS = "results.npz"
 #: the displacement fields of the ``STATE`` tasks, and the manifest field of its SHA-256

@@ -7,10 +7,10 @@ to the system quickly). Setting that variable switches off glibc's adaptive thre
 unmapped again: measured on this project's non-linear runs, 1.6 times the time a run takes in
 a worker started without it (0.87 s against 1.43 s a run, in one process, the same runs).
 :func:`restore_malloc` puts glibc's large thresholds back (``mallopt``), and limits BLAS to one
-thread (what the local pool gives each worker). :func:`~mechlib.hexflex.campaign.executors.
+thread (what the local pool gives each worker). :func:`~mechlib.campaign.executors.
 dask_executor` installs it on every worker of the cluster, present and future, as a worker
 plugin (:class:`CampaignWorker`); a worker started with ``--preload
-mechlib.hexflex.campaign.daskworker`` also imports the FE stack before its first task.
+mechlib.campaign.daskworker`` also imports the FE stack before its first task.
 """
 
 from __future__ import annotations
@@ -65,11 +65,10 @@ class CampaignWorker(_plugin_base()):
 
 
 def dask_setup(worker: object = None) -> None:
-    """Preload hook (``--preload mechlib.hexflex.campaign.daskworker``): the FE stack imported
+    """Preload hook (``--preload mechlib.campaign.daskworker``): the FE stack imported
     before the first task, and :func:`restore_malloc`."""
-    # the FE core and the HexFlex's models (SciPy, threadpoolctl; SfePy itself is imported by
-    # the first task that builds a model), before the first task
-    import mechlib.fe.nonlinear
-    import mechlib.hexflex.fe.lean  # noqa: F401
+    # the FE core (SciPy, threadpoolctl; SfePy itself and a mechanism's model modules are
+    # imported by the first task that builds a model), before the first task
+    import mechlib.fe.nonlinear  # noqa: F401
 
     restore_malloc()

@@ -1,10 +1,10 @@
 """The FE cache's files: task keys, the code fingerprint in them, atomic writes, the task log.
 
-:func:`mechlib.hexflex.campaign.experiments.run_experiments` caches each finished task as
+:func:`mechlib.campaign.experiments.run_experiments` caches each finished task as
 ``<key>.npy`` (its poses) under a key made of the cache format, the fingerprint of the sources
 that define a result, the model specification, the kind, the load steps and the forces; the
-results store (:mod:`mechlib.hexflex.campaign.store`) and the cold checks
-(:mod:`mechlib.hexflex.campaign.cachecheck`) recompute the same keys.
+results store (:mod:`mechlib.campaign.store`) and the cold checks
+(:mod:`mechlib.campaign.cachecheck`) recompute the same keys.
 """
 
 from __future__ import annotations
@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.hexflex.campaign.codedigest import code_digest, local_digest
-from mechlib.hexflex.campaign.sources import TASK_MODULES, model_modules
+from mechlib.campaign.codedigest import code_digest, local_digest
+from mechlib.campaign.sources import model_modules
 from mechlib.paths import fe_log_path
 
 #: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics;
@@ -33,15 +33,15 @@ STATE = "state"
 
 
 @lru_cache(maxsize=4)
-def model_code_fingerprint(task_modules: tuple[str, ...] = TASK_MODULES) -> str:
+def model_code_fingerprint(task_modules: tuple[str, ...]) -> str:
     """Digest of the code that defines a task's results (:func:`model_modules`: geometry,
-    mesh, FE model, solver, pose fit …) of the HexFlex's tasks, or of those a mechanism's
-    spec names (its ``TASK_MODULES``).
+    mesh, FE model, solver, pose fit …) of the tasks that run ``task_modules`` (a
+    specification's ``TASK_MODULES``, :class:`mechlib.campaign.spec.Spec`).
 
     Part of every cache key, so that a change to the mesher or the solver can never return
     results computed by the old code. It digests each module's syntax tree without docstrings,
     annotations, typing-only imports and module paths
-    (:func:`~mechlib.hexflex.campaign.codedigest.code_digest`), and combines the modules'
+    (:func:`~mechlib.campaign.codedigest.code_digest`), and combines the modules'
     digests sorted, not their names: rewording a docstring or a comment, or moving or renaming a
     module (its importers updated), keeps the cache and the results store; changing a line of
     code does not. A package whose ``__init__.py`` holds only its docstring (what the package is
@@ -112,7 +112,7 @@ def task_key(
     """The cache key of a task: a digest of the cache format ``version``, the code
     ``fingerprint`` (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key`
     text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes.
-    Only :mod:`mechlib.hexflex.campaign.rekey` passes another ``version`` (to check keys of
+    Only :mod:`mechlib.campaign.rekey` passes another ``version`` (to check keys of
     format 3)."""
     h = hashlib.sha256()
     h.update(f"{version}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
@@ -159,8 +159,8 @@ def cached_result(path: Path, n_rows: int, width: int = 6) -> np.ndarray | None:
 def log_task(path: Path, spec: str, kind: str, forces: np.ndarray, steps: int, hit: bool) -> None:
     """Append a task to ``$MECHLIB_FE_LOG`` (if set; one JSON line: the cache file, the task's
     inputs and whether it was read from the cache), so that
-    :mod:`mechlib.hexflex.campaign.cachecheck` can recompute a sample of the hits cold and
-    :mod:`mechlib.hexflex.campaign.store` can collect every task a build used."""
+    :mod:`mechlib.campaign.cachecheck` can recompute a sample of the hits cold and
+    :mod:`mechlib.campaign.store` can collect every task a build used."""
     log = fe_log_path()
     if log is not None:
         entry = {"file": path.name, "spec": spec, "kind": kind, "steps": steps, "hit": hit}
