@@ -12,7 +12,6 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 from mechlib import published as pub
-from mechlib.hexflex.spec import ModelSpec
 from mechlib.paths import REPO_ROOT
 
 #: Non-linear validation runs timed in-process, and on the two-process pool.
@@ -178,6 +177,7 @@ def _chapter_spec():
     geometry at the default mesh (the second item says which)."""
     from mechlib.hexflex.fe.model import DEFAULT_MESH_FRACTION
     from mechlib.hexflex.geometry import HexFlexGeometry
+    from mechlib.hexflex.spec import ModelSpec
     from mechlib.paths import records_dir
     from mechlib.pipeline.execute import chapter_inputs
 
