@@ -41,8 +41,10 @@ def test_the_house_shows_every_room_in_its_wing() -> None:
 def test_the_hexflex_drawing_shows_its_fe_room_on_the_core() -> None:
     hexflex = housegraph.mermaid("hexflex", KNOWN)
     assert "  mechlib_hexflex_fe --> mechlib_fe\n" in hexflex  # the HexFlex's instance of the core
-    assert "  mechlib_hexflex_rom --> mechlib_hexflex_campaign\n" in hexflex
-    assert "mechlib_hexflex_fe --> mechlib_hexflex_campaign" not in hexflex  # rooms below only
+    assert "  mechlib_hexflex_rom --> mechlib_hexflex_spec\n" in hexflex
+    assert "  mechlib_hexflex_rom --> mechlib_campaign\n" in hexflex  # the shared campaign
+    assert "mechlib_hexflex_fe --> mechlib_hexflex_spec" not in hexflex  # rooms below only
+    assert "mechlib_campaign --> mechlib_hexflex" not in hexflex  # the campaign names no mechanism
 
 
 def test_the_command_prints_a_drawing(capsys: pytest.CaptureFixture[str]) -> None:
