@@ -164,3 +164,23 @@ def test_the_makefile_is_a_short_front_door_whose_help_lists_every_target() -> N
     assert helped.returncode == 0, helped.stderr
     listed = set(re.findall(r"make ([a-z][a-z-]*)", helped.stdout))
     assert sorted(targets - listed) == []
+
+
+def test_a_terminated_test_graph_stops_its_steps_and_exits_130(tmp_path) -> None:
+    script = (
+        "import sys; from mechlib.pipeline import dag, testgraph;"
+        "testgraph.steps = lambda kernel: [dag.Step('sleep', [('sleep', '60')])];"
+        "sys.exit(testgraph.main(['--kernel', 'Haswell']))"
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+    )
+    assert proc.stdout is not None
+    for line in proc.stdout:
+        if line.startswith("[sleep] $"):
+            break
+    start = time.monotonic()
+    proc.terminate()
+    rest = proc.stdout.read()
+    assert proc.wait(timeout=30) == 130 and time.monotonic() - start < 15
+    assert "interrupted" in rest

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import signal
 import sys
 import time
 from dataclasses import replace
@@ -166,10 +167,20 @@ def main(argv: list[str] | None = None) -> int:
             top.error(f"unknown steps {unknown}; have {[s.name for s in graph]}")
         graph = [replace(s, after=()) for s in graph if s.name in wanted]
     start = time.monotonic()
-    outcomes = run_graph(graph, jobs=args.jobs, env=make_environment(dict(os.environ)))
+    signal.signal(signal.SIGTERM, _terminated)  # a CI time-out: stop the steps' process groups
+    try:
+        outcomes = run_graph(graph, jobs=args.jobs, env=make_environment(dict(os.environ)))
+    except KeyboardInterrupt:
+        print(f"make test: interrupted after {time.monotonic() - start:.0f} s", flush=True)
+        return 130
     ok, lines = summary(outcomes, time.monotonic() - start)
     print("\n".join(["", "make test:", *lines]), flush=True)
     return 0 if ok else 1
+
+
+def _terminated(signum: int, frame: object) -> None:
+    """SIGTERM as Ctrl-C: :func:`~mechlib.pipeline.dag.run_graph` then stops every step."""
+    raise KeyboardInterrupt
 
 
 def _other_kernel() -> str:
