@@ -7,6 +7,7 @@ runs with the standard library alone, before the environment exists)::
 
     python3 mechlib/pipeline/chapters.py order   # the chapters, in execution order
     python3 mechlib/pipeline/chapters.py edges   # chapter:upstream pairs, one per input record
+    python3 mechlib/pipeline/chapters.py makefile  # the Makefile's rules (build/chapters.mk)
 """
 
 from __future__ import annotations
@@ -110,9 +111,20 @@ def check_order() -> None:
                 )
 
 
+def make_rules(executed: str = "$(BUILD)/executed") -> list[str]:
+    """The Makefile's lines for the chapters: ``NB_NAMES`` (the chapters in order), a
+    prerequisite per input (a chapter executes after those whose records fill its inputs) and an
+    order-only one per :data:`DEFERRED` pair (make starts the ready chapter that comes first in
+    its list, so the quick chapters that feed no other wait for the longest chain)."""
+    lines = [f"NB_NAMES := {' '.join(CHAPTERS)}"]
+    lines += [f"{executed}/{c}.ipynb: {executed}/{u}.ipynb" for c in CHAPTERS for u in upstream(c)]
+    lines += [f"{executed}/{c}.ipynb: | {executed}/{a}.ipynb" for c, a in DEFERRED.items()]
+    return lines
+
+
 def main(argv: list[str]) -> int:
-    """``order``: the chapters one per word; ``edges``: ``chapter:upstream`` words (for make);
-    ``deferred``: ``chapter:after`` words of :data:`DEFERRED`."""
+    """``order``: the chapters one per word; ``edges``: ``chapter:upstream`` words;
+    ``deferred``: ``chapter:after`` words of :data:`DEFERRED`; ``makefile``: :func:`make_rules`."""
     check_order()
     if argv == ["order"]:
         print(" ".join(CHAPTERS))
@@ -120,8 +132,10 @@ def main(argv: list[str]) -> int:
         print(" ".join(f"{c}:{u}" for c in CHAPTERS for u in upstream(c)))
     elif argv == ["deferred"]:
         print(" ".join(f"{c}:{a}" for c, a in DEFERRED.items()))
+    elif argv == ["makefile"]:
+        print("\n".join(make_rules()))
     else:
-        print("usage: chapters.py order|edges|deferred", file=sys.stderr)
+        print("usage: chapters.py order|edges|deferred|makefile", file=sys.stderr)
         return 2
     return 0
 

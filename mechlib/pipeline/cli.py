@@ -9,6 +9,7 @@ update         ``make references``: a build's records to ``tests/references``, s
 book           the book's generated pages from the executed notebooks and their records
 check-browser  every built page in headless Chromium, network off
 store          the FE results store (``store/``): seed a build's cache, pack a build, check cold
+test           ``make test``: lint, notebooks, records, determinism, book, checks, unit tests, store
 =============  ================================================================================
 """
 
@@ -20,7 +21,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from mechlib.paths import REPO_ROOT
-from mechlib.pipeline import bookbuild, runs, storecmd
+from mechlib.pipeline import bookbuild, runs, storecmd, testgraph
 from mechlib.pipeline.book import browser
 from mechlib.pipeline.execute import execute
 from mechlib.pipeline.references import update_references
@@ -139,6 +140,7 @@ DELEGATED: dict[str, tuple[Callable[[list[str]], int], str]] = {
     "book": (bookbuild.main, "the book's generated pages from executed notebooks and records"),
     "check-browser": (browser.main, "every built page in headless Chromium, network off"),
     "store": (storecmd.main, "the FE results store: seed a cache, pack a build, check cold"),
+    "test": (testgraph.main, "make test: its steps as a graph (docs/testing.md)"),
 }
 
 
