@@ -34,7 +34,8 @@ from typing import TextIO
 LOW_PRIORITY = (
     "sh",
     "-c",
-    'if test -w /proc/self/autogroup; then echo 10 > /proc/self/autogroup; fi; exec nice -n 10 "$@"',
+    "if test -w /proc/self/autogroup; then echo 10 > /proc/self/autogroup; fi; "
+    'exec nice -n 10 "$@"',
     "low",
 )
 #: Seconds a stopped step has between SIGTERM and SIGKILL.
