@@ -54,11 +54,14 @@ def test_a_step_starts_after_its_dependencies_and_its_output_is_prefixed(tmp_pat
 
 
 def test_independent_steps_run_at_once_and_jobs_caps_them(tmp_path) -> None:
-    graph = [Step(n, [_log(tmp_path / "log", n, 0.6)]) for n in "abc"]
-    start = time.monotonic()
+    graph = [Step(n, [_log(tmp_path / "log", n, 1.5)]) for n in "abc"]
     _run(graph)
-    assert time.monotonic() - start < 1.5  # three 0.6 s steps side by side, not 1.8 s
+    # side by side: every step started before any ended (an order, not a time: a loaded machine
+    # may start processes slowly, but not 1.5 s late)
+    lines = (tmp_path / "log").read_text().splitlines()
+    assert sorted(lines[:3]) == ["start a", "start b", "start c"]
     (tmp_path / "log").unlink()
+    graph = [Step(n, [_log(tmp_path / "log", n, 0.1)]) for n in "abc"]
     _run(graph, jobs=1)
     lines = (tmp_path / "log").read_text().splitlines()
     assert lines == ["start a", "end a", "start b", "end b", "start c", "end c"]
@@ -85,7 +88,8 @@ def test_a_failure_stops_the_graph_and_the_summary_names_it(tmp_path) -> None:
     assert time.monotonic() - start < 15  # the slow sibling was stopped, not waited for
     status = {n: o.status for n, o in outcomes.items()}
     assert status == {"slow": "stopped", "broken": "FAILED", "after": "not run", "later": "not run"}
-    assert "end slow" not in log.read_text()
+    # the slow step may be stopped before it writes its first line: it must never have ended
+    assert not log.exists() or "end slow" not in log.read_text()
     assert "[broken] broken" in text
     ok, lines = summary(outcomes, 2.0)
     assert not ok and lines[-1].startswith("FAILED: broken")
