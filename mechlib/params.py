@@ -230,9 +230,15 @@ def check_matrix(
     Raises
     ------
     ValueError
-        If the array is not 2-D, has the wrong shape or holds NaN/inf.
+        If the value is not numbers, not 2-D (ragged rows included), has the wrong shape or
+        holds NaN/inf.
     """
-    arr = np.asarray(value, dtype=float)
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as err:  # ragged rows, text: numpy's message names no value
+        raise ValueError(
+            f"{name} must be a 2-D array of numbers with rows of equal length, got {value!r:.80}"
+        ) from err
     if arr.ndim != 2:
         raise ValueError(f"{name} must be a 2-D array, got {arr.ndim}-D with shape {arr.shape}")
     if shape is not None:

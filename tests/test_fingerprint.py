@@ -1,23 +1,19 @@
 """The FE code fingerprint digests code, not text: a docstring, a comment, an annotation or a
 module's name and place leave it, an arithmetic line or a constant moves it; typing-only imports
 are not followed. Checked on source strings and on a small package written to a temporary
-folder; and the re-keying of a format-3 store."""
+folder."""
 
 from __future__ import annotations
 
 import importlib
-import json
 import sys
 import textwrap
-from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from mechlib import fespecs as fespecs  # the FE families a store holds, registered
 from mechlib.campaign import codedigest as cd
-from mechlib.campaign import rekey as rk
-from mechlib.campaign import store as st
 from mechlib.campaign.sources import model_modules
 from mechlib.campaign.taskcache import model_code_fingerprint, task_key
 from mechlib.hexflex.spec import ModelSpec
@@ -179,72 +175,63 @@ def test_a_package_changes_its_fingerprint_with_its_code(fingerprint_of) -> None
 def test_a_typing_only_import_is_not_followed(fingerprint_of) -> None:
     base, closure = fingerprint_of(PACKAGE)
     assert "synth.shapes" not in closure
-    assert "synth.shapes" in fingerprint_of(PACKAGE, format3=True)[1]  # format 3 did
     edited = {**PACKAGE, "synth/shapes.py": "class Shape:\n    SIDES = 4\n"}
     assert fingerprint_of(edited)[0] == base
 
 
-def test_the_fe_closure_leaves_out_the_solid_model_protocol() -> None:
-    """``mechlib.fe.nonlinear`` imports the protocol under ``if TYPE_CHECKING:`` only."""
+def test_a_module_digest_covers_what_it_imports_all_the_way_down(fingerprint_of) -> None:
+    """``core`` and ``other`` differ only in what they import (the same code otherwise): an
+    unchanged ``via`` that reads ``f`` from the one or the other computes different things, and
+    the fingerprint tells them apart although the closure holds the same modules."""
+    files = {
+        "synth/__init__.py": PACKAGE["synth/__init__.py"],
+        "synth/plus.py": "def f(a, b):\n    return a + b\n",
+        "synth/times.py": "def f(a, b):\n    return a * b\n",
+        "synth/core.py": "from synth.plus import f\n",
+        "synth/other.py": "from synth.times import f\n",
+        "synth/via.py": "from synth.core import f\n",
+        "synth/side.py": "from synth import core, other\n",  # both stay in the closure
+        "synth/task.py": "from synth import side\nfrom synth.via import f\n\n\n"
+        "def run(x):\n    return f(x, 2.0)\n",
+    }
+    base, closure = fingerprint_of(files)
+    rerouted = {**files, "synth/via.py": "from synth.other import f\n"}
+    fp, closure2 = fingerprint_of(rerouted)
+    assert closure == closure2 and {"synth.core", "synth.other", "synth.plus"} <= set(closure)
+    assert fp != base
+
+
+def test_a_dataclass_field_is_not_a_class_attribute() -> None:
+    field = "class C:\n    x: float = 1.0\n"
+    attribute = "class C:\n    x = 1.0\n"
+    assert cd.code_digest(field) != cd.code_digest(attribute)
+    assert cd.code_digest("x: float = 1.0\n") == cd.code_digest("x = 1.0\n")  # a module's
+
+
+def test_a_module_imported_from_its_package_is_named_by_its_digest() -> None:
+    src = "from mechlib.hexflex import geometry as geo\n"
+    one = {"mechlib.hexflex": "a" * 64, "mechlib.hexflex.geometry": "b" * 64}
+    other = {**one, "mechlib.hexflex.geometry": "c" * 64}
+    assert cd.code_digest(src, "", one) != cd.code_digest(src, "", other)
+
+
+def test_the_fe_closure_holds_the_task_runner_and_the_specification() -> None:
+    """What a task computes is decided by the specification's ``build`` and ``SOLVE_METHOD``
+    and by the runner's solve (``mechlib.campaign.solve``): all in every family's key."""
+    from mechlib.compliant.spec import MechanismSpec
+
+    for spec in (ModelSpec, MechanismSpec):
+        closure = model_modules((*spec.TASK_MODULES, "mechlib.campaign.solve"))
+        assert spec.__module__ in closure and "mechlib.campaign.solve" in closure
+        assert "mechlib.campaign.experiments" not in closure  # the runner's bookkeeping is not
     assert "mechlib.fe.nonlinear" in model_modules(ModelSpec.TASK_MODULES)
+    # ``mechlib.fe.nonlinear`` imports the solid model protocol under TYPE_CHECKING only
     assert "mechlib.fe.protocol" not in model_modules(ModelSpec.TASK_MODULES)
-    assert "mechlib.fe.protocol" in model_modules(ModelSpec.TASK_MODULES, format3=True)
 
 
-# --- re-keying a store of format 3 ---------------------------------------------------------------
-
-
-def _format3_store(folder, spec: str, old: dict[str, str], entries=None):
-    """A format-3 store of two synthetic HexFlex entries keyed on the fingerprints ``old`` (or
-    of ``entries``)."""
+def test_the_key_of_a_task_follows_its_fingerprint() -> None:
     forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
-    entries = entries or [
-        st.Entry(task_key(spec, kind, forces * s, 2, old["hexflex"], 3), spec, kind, 2,
-                 forces * s, np.arange(width, dtype=float)[None, :] * s)
-        for kind, width, s in (("nonlinear", 22, 1.0), ("linear", 6, -0.5))
-    ]  # fmt: skip
-    st.write_store(entries, folder, {"commit": "84391a6eb275", "seconds": 1388.0})
-    m = json.loads((folder / st.MANIFEST).read_text())
-    m.update(version=3, fingerprint=old["hexflex"], fingerprints=old)
-    (folder / st.MANIFEST).write_text(json.dumps(m))
-    return entries
-
-
-def test_a_format3_store_of_the_current_code_is_rekeyed_bit_for_bit(tmp_path) -> None:
-    from test_store import SPEC  # tests/ is on sys.path (pytest prepend import mode)
-
-    folder = tmp_path / "store"
-    old = rk.byte_fingerprints()
-    before = _format3_store(folder, SPEC.key(), old)
-    with pytest.raises(st.StoreError, match="format version 3; this code reads versions 4"):
-        st.read_store(folder)
-    manifest, n = rk.rekey_store(folder, "abc123")
-    assert n == 2 and manifest["version"] == st.STORE_VERSION
-    assert manifest["commit"] == "84391a6eb275" and manifest["seconds"] == 1388.0
-    assert manifest["rekeyed"]["from"] == {"version": 3, "fingerprints": old}
-    assert manifest["rekeyed"]["commit"] == "abc123"
-    _, after = st.read_store(folder)
-    new = st.fingerprints()["hexflex"]
-    for a, b in zip(before, after, strict=True):
-        assert b.key == task_key(a.spec, a.kind, a.forces, a.steps, new) != a.key
-        np.testing.assert_array_equal(a.results, b.results)
-
-
-def test_a_store_of_other_code_or_an_edited_entry_is_not_rekeyed(tmp_path) -> None:
-    from test_store import SPEC
-
-    folder = tmp_path / "store"
-    _format3_store(folder, SPEC.key(), {**rk.byte_fingerprints(), "hexflex": "0" * 16})
-    manifest = (folder / st.MANIFEST).read_text()
-    with pytest.raises(st.StoreError, match=r"other than the current one .* cannot be re-keyed"):
-        rk.rekey_store(folder, "abc123")
-    assert (folder / st.MANIFEST).read_text() == manifest  # left as it was
-    # an entry whose key is the digest of other inputs than those stored (other load steps)
-    old = rk.byte_fingerprints()
-    entries = _format3_store(folder, SPEC.key(), old)
-    bad = replace(entries[1], key=task_key(SPEC.key(), "linear", entries[1].forces, 9,
-                                           old["hexflex"], 3))  # fmt: skip
-    _format3_store(folder, SPEC.key(), old, [entries[0], bad])
-    with pytest.raises(st.StoreError, match=f"entry {bad.key} is not the format-3 digest"):
-        rk.rekey_store(folder, "abc123")
-    assert not (tmp_path / ".store.rekeyed").exists()
+    spec = ModelSpec.__module__
+    one = task_key(spec, "nonlinear", forces, 2, "0" * 16)
+    assert one == task_key(spec, "nonlinear", forces.copy(), 2, "0" * 16)
+    assert one != task_key(spec, "nonlinear", forces, 2, "1" * 16)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from mechlib.params import check_choice, check_float, check_increasing, check_int
+from mechlib.params import check_choice, check_float, check_increasing, check_int, check_matrix
 from mechlib.reporting import report
 
 
@@ -48,6 +48,12 @@ def test_checks_accept_good_values() -> None:
             ValueError,
             r"penalty must be one of \['ridge', 'lasso'\], got 'l3'",
         ),
+        (
+            lambda: check_matrix("poses", [[1.0, 2.0], [3.0]]),
+            ValueError,
+            r"poses must be a 2-D array of numbers with rows of equal length, got \[\[1.0, 2.0\]",
+        ),
+        (lambda: check_matrix("poses", [1.0, 2.0]), ValueError, "poses must be a 2-D array"),
     ],
 )
 def test_bad_values_name_the_parameter_and_range(call, exc, message) -> None:

@@ -84,7 +84,9 @@ def test_a_stale_edited_or_corrupt_store_is_refused_in_one_line(built, tmp_path,
     # a malformed manifest, an unknown version, no store
     m = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**m, "version": 99}))
-    with pytest.raises(st.StoreError, match="format version 99; this code reads versions 4"):
+    with pytest.raises(
+        st.StoreError, match=f"format version 99; this code reads versions {st.STORE_VERSION}"
+    ):
         st.read_store(folder)
     (folder / st.MANIFEST).write_text("{not json")
     with pytest.raises(st.StoreError, match="not valid JSON"):
@@ -230,7 +232,7 @@ def test_a_store_holds_both_mechanisms_and_seeds_each_by_its_own_code(built, tmp
     assert sorted({st.family(e.spec) for e in entries}) == ["hexflex", "mechanism"]
     folder = st.write_store(entries, tmp_path / "store")
     manifest, back = st.read_store(folder)
-    assert manifest["version"] == 4 and manifest["fingerprints"] == st.fingerprints()
+    assert manifest["version"] == st.STORE_VERSION and manifest["fingerprints"] == st.fingerprints()
     assert sorted(e.forces.shape[1] for e in back) == [3, 3, 6, 6, 6]
     fresh = tmp_path / "fresh"
     assert st.seed_cache(folder, fresh) == 5

@@ -230,3 +230,34 @@ def test_the_campaign_names_no_mechanism() -> None:
         tree = ast.parse(path.read_text())
         found = {n.value for n in ast.walk(tree) if isinstance(n, ast.Constant)} & names
         assert not found, (path.name, found)
+
+
+def test_no_module_reads_another_s_private_members() -> None:
+    """A module uses another's public interface (e.g. the SVK tangent's per-element data for the
+    reduced-order model and material regions): no ``obj._name`` but on ``self`` or ``cls``."""
+    import ast
+
+    found = []
+    for path in sorted((REPO_ROOT / "mechlib").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (
+                isinstance(node, ast.Attribute)
+                and node.attr.startswith("_")
+                and not node.attr.startswith("__")
+                and not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls"))
+            ):
+                found.append(f"{path.relative_to(REPO_ROOT)}:{node.lineno} {ast.unparse(node)}")
+    assert found == []
+
+
+def test_every_linear_model_extends_the_one_factorised_base() -> None:
+    from mechlib.compliant.model import MechanismModel
+    from mechlib.fe.linear import FactorisedModel, FactorisedStiffness
+    from mechlib.hexflex.fe.model import HexFlexModel
+    from mechlib.hexflex.studies.cantilever import Cantilever
+
+    assert issubclass(HexFlexModel, FactorisedModel) and issubclass(MechanismModel, FactorisedModel)
+    assert issubclass(Cantilever, FactorisedStiffness)
+    for model in (HexFlexModel, MechanismModel):  # the solve and the pose written once
+        own = set(vars(model))
+        assert not own & {"back_substitute", "solve_reduced", "pose_of", "compliance", "poses"}

@@ -9,7 +9,8 @@ linear blocks, non-linear runs, model sizes, and full-state snapshots for a redu
 :mod:`.daskworker`) and caches each finished task on disk under a key (:mod:`.taskcache`) that
 includes a digest of the FE sources (:mod:`.sources`, :mod:`.codedigest`); :mod:`.store` packs
 the tasks a build used into the versioned results store (:mod:`.storefiles`) and reads it back,
-:mod:`.rekey` re-keys a store of an older key format; :mod:`.cachecheck` recomputes a seeded
-sample cold. Imports the solid FE core (:mod:`mechlib.fe`, :mod:`mechlib.blas`) and the ground
-floor, never a mechanism package: a specification names its own model and code.
+:mod:`.solve` is what one task computes (in every key's code digest); :mod:`.cachecheck`
+recomputes a seeded sample cold. Imports the solid FE core (:mod:`mechlib.fe`,
+:mod:`mechlib.blas`) and the ground floor, never a mechanism package: a specification names its
+own model and code.
 """

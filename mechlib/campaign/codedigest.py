@@ -12,9 +12,11 @@ cached run and the results store. It digests each module's syntax tree instead, 
   ``x: T`` keeps its name, a dataclass field, and marks only ``ClassVar`` and ``InitVar``, which
   change what a dataclass is);
 - ``from __future__`` imports, and every statement under ``if TYPE_CHECKING:``, removed;
-- the module path of a mechlib import replaced by the digest of the imported module's own
-  normalised code (:func:`local_digest`), so that moving or renaming a module (its importers
-  updated) changes no digest, while importing a name from another module does.
+- the module path of a mechlib import (and the name of a mechlib module imported from its
+  package) replaced by the digest of the imported module (:func:`closure_digests`: its
+  normalised code with its own imports so named, all the way down), so that moving or renaming a
+  module (its importers updated) changes no digest, while importing a name from another module,
+  or a change anywhere below what a module imports, does.
 
 The digest depends on the Python version's syntax tree (pinned by ``environment.lock``): fields a
 later version adds empty are left out of it.
@@ -95,6 +97,67 @@ def normalise(
 def local_digest(source: str | bytes) -> str:
     """SHA-256 (hex) of a module's normalised code, its mechlib imports naming no module."""
     return hashlib.sha256(dump(normalise(source)).encode()).hexdigest()
+
+
+def imported_modules(source: str | bytes, package: str = "") -> set[str]:
+    """The mechlib modules and packages a module's code imports (module level or in a function;
+    not under ``if TYPE_CHECKING:``), as dotted names: for ``from X import a``, X and ``X.a``
+    (which is a module only if ``a`` is one: the caller keeps the names it knows)."""
+    found: set[str] = set()
+    todo = [ast.parse(source)]
+    while todo:
+        node = todo.pop()
+        children = list(ast.iter_child_nodes(node))
+        if is_typing_block(node):
+            children = list(node.orelse)
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names if is_internal(a.name)}
+        elif (base := internal_target(node, package)) is not None:
+            found |= {base} | {f"{base}.{a.name}" for a in node.names}
+        todo.extend(children)
+    return found
+
+
+def closure_digests(modules: dict[str, tuple[str | bytes, str]]) -> dict[str, str]:
+    """The digest of each module of a closure: its normalised code, each mechlib import naming
+    the digest of the module it reads, computed the same way — so a module's digest covers
+    everything it imports, all the way down.
+
+    Parameters
+    ----------
+    modules : dict
+        ``{name: (source, package)}`` of every module of the closure; an import of a module not
+        in it names nothing.
+
+    Returns
+    -------
+    dict
+        ``{name: 64 hex digits}``. Where modules import each other in a circle, the import that
+        closes it names the imported module's :func:`local_digest` (its code without its imports'
+        digests); modules are visited by sorted name, which decides where a circle is closed.
+    """
+    deps = {
+        name: sorted(m for m in imported_modules(src, pkg) if m in modules and m != name)
+        for name, (src, pkg) in modules.items()
+    }
+    done: dict[str, str] = {}
+    busy: set[str] = set()
+
+    def visit(name: str) -> str:
+        if name in done:
+            return done[name]
+        busy.add(name)
+        named = {}
+        for dep in deps[name]:
+            named[dep] = local_digest(modules[dep][0]) if dep in busy else visit(dep)
+        busy.discard(name)
+        src, pkg = modules[name]
+        done[name] = code_digest(src, pkg, named)
+        return done[name]
+
+    for name in sorted(modules):
+        visit(name)
+    return done
 
 
 def code_digest(
@@ -183,12 +246,13 @@ class _Normaliser(ast.NodeTransformer):
         return node
 
     def visit_AnnAssign(self, node: ast.AnnAssign) -> ast.AST | None:
-        marker = next((m for m in DATACLASS_MARKERS if m in ast.unparse(node.annotation)), None)
-        if node.value is not None and not (self.in_class and marker):
+        if not self.in_class:  # ``x: T = v`` binds as ``x = v``; ``x: T`` binds nothing
+            if node.value is None:
+                return None
             return self.visit(ast.Assign(targets=[node.target], value=node.value))
-        if not self.in_class:
-            return None  # ``x: T`` in a function or a module binds nothing
-        node.annotation = ast.Name(id=marker or "", ctx=ast.Load())
+        # in a class body an annotation makes a dataclass field (unlike ``x = v``): kept as a mark
+        marker = next((m for m in DATACLASS_MARKERS if m in ast.unparse(node.annotation)), "")
+        node.annotation = ast.Name(id=marker, ctx=ast.Load())
         return self.generic_visit(node)
 
     def visit_ImportFrom(self, node: ast.ImportFrom) -> ast.AST | None:
@@ -201,6 +265,10 @@ class _Normaliser(ast.NodeTransformer):
         target = internal_target(node, self.package)
         if target is not None:
             node.module, node.level = self.digests.get(target, ""), 0
+            for alias in node.names:  # ``from package import module``: the module's digest
+                sub = self.digests.get(f"{target}.{alias.name}")
+                if sub is not None:
+                    alias.name, alias.asname = sub, alias.asname or alias.name
         return node
 
     def visit_Import(self, node: ast.Import) -> ast.AST:

@@ -17,16 +17,19 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import functools
-from dataclasses import dataclass, fields, replace
-from functools import lru_cache
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from mechlib.blas import one_thread
 from mechlib.campaign.executors import InProcessExecutor, worker_count
+from mechlib.campaign.solve import SOLVE_FIELDS as SOLVE_FIELDS
+from mechlib.campaign.solve import STATE as STATE
+from mechlib.campaign.solve import model_for as model_for
+from mechlib.campaign.solve import release_models as release_models
+from mechlib.campaign.solve import run_task
+from mechlib.campaign.solve import solver_for as solver_for
 from mechlib.campaign.spec import Spec
-from mechlib.campaign.taskcache import STATE as STATE
 from mechlib.campaign.taskcache import (
     cache_result,
     cached_result,
@@ -34,8 +37,7 @@ from mechlib.campaign.taskcache import (
     model_code_fingerprint,
     task_key,
 )
-from mechlib.fe.finite_pose import CONVENTIONS, finite_poses
-from mechlib.fe.nonlinear import NonlinearSolver
+from mechlib.fe.finite_pose import CONVENTIONS
 from mechlib.params import check_choice, check_int
 from mechlib.progress import Progress
 
@@ -63,35 +65,8 @@ POSE_COLUMNS = {"linear": 6, "nonlinear": 6 * len(CONVENTIONS), "size": 1}
 RESULT_COLUMNS = {**POSE_COLUMNS, "nonlinear": POSE_COLUMNS["nonlinear"] + len(SOLVE_STATS)}
 #: Rows per task for the linear model (one batched back-substitution each).
 LINEAR_BLOCK = 250
-#: a specification's fields that set only its non-linear solve, not its model: the runner shares
-#: one model among specifications that differ in these alone (each at its field's default)
-SOLVE_FIELDS: tuple[str, ...] = ("quad_order",)
 KIND_NAMES = {"linear": "linear FE runs", "nonlinear": "non-linear FE runs", "size": "model sizes"}
 """What a campaign of each kind is called in its progress reports."""
-
-
-def model_for(spec: Spec) -> object:
-    """The model of ``spec``, built once per process (one model for every ``quad_order``: the
-    linear model's quadrature is fixed; a :data:`SOLVE_FIELDS` field is set to its default)."""
-    solve_only = {f.name: f.default for f in fields(spec) if f.name in SOLVE_FIELDS}
-    return _model(replace(spec, **solve_only))
-
-
-@lru_cache(maxsize=4)
-def _model(spec: Spec) -> object:
-    with one_thread():  # the same bits wherever it is built
-        return spec.build()
-
-
-def release_models() -> None:
-    """Forget the models and solvers this process keeps (:func:`model_for`,
-    :func:`solver_for`): a Q2 solver of the identified model holds gigabytes, so a study that
-    goes through several models releases each before building the next."""
-    import gc
-
-    solver_for.cache_clear()
-    _model.cache_clear()
-    gc.collect()
 
 
 class ExperimentError(RuntimeError):
@@ -130,37 +105,8 @@ class FailedRun:
     reason: str
 
 
-@lru_cache(maxsize=4)
-def solver_for(spec: Spec) -> NonlinearSolver:
-    """The non-linear solver of ``spec``'s model, built once per process (on
-    :func:`model_for`'s model)."""
-    return spec.SOLVER(model_for(spec), quad_order=spec.quad_order)
-
-
 def _task(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    with one_thread():  # in a pool, in-process or on Dask alike
-        return _solve(spec, kind, forces, steps)
-
-
-def _solve(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
-    if kind == "linear":
-        return model_for(spec).poses(forces)
-    if kind == "size":
-        return np.full((len(forces), 1), float(model_for(spec).n_dofs))
-    solver = solver_for(spec)
-    if kind == STATE:  # the fields themselves, (rows, n_dofs) [mm]
-        return np.array([solver.solve(f, steps=steps, method=spec.SOLVE_METHOD)[0] for f in forces])
-    model = solver.model
-    rows = []
-    for f in forces:
-        u, stats = solver.solve(f, steps=steps, method=spec.SOLVE_METHOD)
-        exact = finite_poses(*model.stage_motion(u))
-        spent = [sum(stats.iterations), sum(stats.factorisations), stats.restarts, stats.residual]
-        # the small-rotation pose as the linear model computes it (bit for bit), then the others
-        rows.append(
-            np.concatenate([model.pose_of(u)] + [exact[c] for c in CONVENTIONS[1:]] + [spent])
-        )
-    return np.array(rows)
+    return run_task(spec, kind, forces, steps)
 
 
 def task_poses(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:

@@ -14,7 +14,7 @@ from pathlib import Path
 from mechlib.campaign.codedigest import internal_target, is_internal, is_typing_block
 
 
-def model_modules(task_modules: tuple[str, ...], *, format3: bool = False) -> tuple[str, ...]:
+def model_modules(task_modules: tuple[str, ...]) -> tuple[str, ...]:
     """The mechlib modules a task's results depend on: ``task_modules`` (a specification's
     ``TASK_MODULES``) and every mechlib module they import,
     directly or not, at module level or inside a function (read from the sources' import
@@ -25,10 +25,6 @@ def model_modules(task_modules: tuple[str, ...], *, format3: bool = False) -> tu
     ----------
     task_modules : tuple of str
         The modules a task runs.
-    format3 : bool
-        The closure that cache format 3 digested instead: imports under ``if TYPE_CHECKING:``
-        followed, a package only where it is imported from (only
-        :func:`mechlib.campaign.rekey.byte_fingerprint` asks for it).
 
     Returns
     -------
@@ -43,9 +39,9 @@ def model_modules(task_modules: tuple[str, ...], *, format3: bool = False) -> tu
             continue
         seen.add(name)
         spec = importlib.util.find_spec(name)
-        if not format3 and spec.parent and spec.parent != name:
+        if spec.parent and spec.parent != name:
             todo.append(spec.parent)
-        for node in _imports(ast.parse(Path(spec.origin).read_text()), format3):
+        for node in _imports(ast.parse(Path(spec.origin).read_text())):
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif (base := internal_target(node, spec.parent)) is not None:
@@ -56,16 +52,16 @@ def model_modules(task_modules: tuple[str, ...], *, format3: bool = False) -> tu
     return tuple(sorted(seen))
 
 
-def _imports(tree: ast.Module, typing_imports: bool) -> list[ast.Import | ast.ImportFrom]:
-    """The import statements of ``tree``, anywhere in it; those under ``if TYPE_CHECKING:``
-    only with ``typing_imports``."""
+def _imports(tree: ast.Module) -> list[ast.Import | ast.ImportFrom]:
+    """The import statements of ``tree``, anywhere in it, but those under ``if TYPE_CHECKING:``
+    (which never run)."""
     found, todo = [], [tree]
     while todo:
         node = todo.pop()
         if isinstance(node, ast.Import | ast.ImportFrom):
             found.append(node)
         children = list(ast.iter_child_nodes(node))
-        if is_typing_block(node) and not typing_imports:
+        if is_typing_block(node):
             children = [c for c in children if c in node.orelse]
         todo.extend(children)
     return found

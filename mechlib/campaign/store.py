@@ -64,10 +64,10 @@ from mechlib.campaign.storefiles import SNAPSHOTS as SNAPSHOTS  # re-exported
 from mechlib.campaign.taskcache import cache_file, model_code_fingerprint, task_key
 
 #: Format of ``manifest.json`` and ``results.npz`` this code writes and reads (:data:`READS`);
-#: 4: keys of cache format 4 (the fingerprint digests the FE code's syntax trees), a format-3
-#: store is re-keyed to it by :func:`mechlib.campaign.rekey.rekey_store`
-STORE_VERSION = 4
-READS = (4,)
+#: 4: keys of cache format 4 (the fingerprint digests the FE code's syntax trees); 5: of cache
+#: format 5 (each module digested with all it imports, the task runner in every closure)
+STORE_VERSION = 5
+READS = (5,)
 
 
 def family(spec: str) -> str:

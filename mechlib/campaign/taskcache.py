@@ -19,17 +19,18 @@ from pathlib import Path
 
 import numpy as np
 
-from mechlib.campaign.codedigest import code_digest, local_digest
+from mechlib.campaign.codedigest import closure_digests
+from mechlib.campaign.solve import STATE
 from mechlib.campaign.sources import model_modules
 from mechlib.paths import fe_log_path
 
 #: 2: a non-linear task stores its poses in the three conventions; 3: and its solve statistics;
-#: 4: the fingerprint digests the FE code's normalised syntax trees, not its bytes and names
-CACHE_VERSION = 4
-#: the kind of a task that keeps a run's converged displacement field, not its poses: a
-#: reduced-order model's snapshot (:mod:`mechlib.hexflex.rom.snapshots`), one run a task, its
-#: result (1, n_dofs) [mm]
-STATE = "state"
+#: 4: the fingerprint digests the FE code's normalised syntax trees, not its bytes and names;
+#: 5: each module named by a digest of its code and of all it imports (transitively), the task
+#: runner (:data:`SOLVE_MODULE`) and the specification's module in every closure
+CACHE_VERSION = 5
+#: the module every task runs, whatever its family (how a task is solved: in every closure)
+SOLVE_MODULE = "mechlib.campaign.solve"
 
 
 @lru_cache(maxsize=4)
@@ -57,7 +58,7 @@ def model_code_fingerprint(task_modules: tuple[str, ...]) -> str:
     str
         16 hex digits.
     """
-    sources = {name: _source(name) for name in model_modules(task_modules)}
+    sources = {name: _source(name) for name in model_modules((*task_modules, SOLVE_MODULE))}
     return fingerprint_sources(
         {name: (src, importlib.util.find_spec(name).parent) for name, src in sources.items()}
     )
@@ -77,12 +78,8 @@ def fingerprint_sources(modules: dict[str, tuple[bytes, str]]) -> str:
     str
         16 hex digits.
     """
-    local = {name: local_digest(src) for name, (src, _) in modules.items()}
-    digests = sorted(
-        code_digest(src, package, local)
-        for name, (src, package) in modules.items()
-        if _defines_code(src)
-    )
+    deep = closure_digests(modules)
+    digests = sorted(deep[name] for name, (src, _) in modules.items() if _defines_code(src))
     return hashlib.sha256("\n".join(digests).encode()).hexdigest()[:16]
 
 
@@ -107,15 +104,13 @@ def task_key(
     forces: np.ndarray,
     steps: int,
     fingerprint: str,
-    version: int = CACHE_VERSION,
 ) -> str:
     """The cache key of a task: a digest of the cache format ``version``, the code
     ``fingerprint`` (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key`
-    text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes.
-    Only :mod:`mechlib.campaign.rekey` passes another ``version`` (to check keys of
-    format 3)."""
+    text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes
+    (:data:`CACHE_VERSION`)."""
     h = hashlib.sha256()
-    h.update(f"{version}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
+    h.update(f"{CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())
     return h.hexdigest()[:32]
 

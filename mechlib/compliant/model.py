@@ -18,17 +18,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mechlib.blas import one_thread
 from mechlib.compliant.layout import Layout, check_load_design
 from mechlib.compliant.planform import Planform, mesh_planform
 from mechlib.compliant.problem import MechanismProblem, build
-from mechlib.fe.factor import factorise
+from mechlib.fe.linear import FactorisedModel
 from mechlib.fe.sfepy_base import assemble_stiffness
 from mechlib.params import check_int
 
 
 @dataclass
-class MechanismModel:
+class MechanismModel(FactorisedModel):
     """A linear FE model of one :class:`Layout`, with its factorised stiffness.
 
     Parameters
@@ -54,11 +53,9 @@ class MechanismModel:
         t1 = time.perf_counter()
         self.fe: MechanismProblem = build(self.layout, self.planform, self.layers)
         t2 = time.perf_counter()
-        self._matrix = assemble_stiffness(self.fe.pb, self.n_dofs)
-        self._lu = factorise(self._matrix)
+        self.set_stiffness(assemble_stiffness(self.fe.pb, self.n_dofs))
         t3 = time.perf_counter()
         self.timings.update(mesh=t1 - t0, setup=t2 - t1, factorisation=t3 - t2)
-        self._compliance: np.ndarray | None = None
 
     @property
     def young(self) -> float:
@@ -77,11 +74,6 @@ class MechanismModel:
         return max(moduli) / min(moduli)
 
     @property
-    def n_dofs(self) -> int:
-        """Number of free degrees of freedom (after clamping)."""
-        return self.fe.n_dofs
-
-    @property
     def n_loads(self) -> int:
         """Number of load ports."""
         return len(self.layout.loads)
@@ -90,43 +82,10 @@ class MechanismModel:
         """Loads as an (n, k) array in the ports' units, each within its port's bound."""
         return check_load_design(self.layout, forces)
 
-    def assembled_stiffness(self):
-        """The reduced stiffness matrix (free DOFs, SciPy sparse) [N/mm]."""
-        return self._matrix
-
-    def load_vectors(self) -> np.ndarray:
-        """Reduced load vectors (n_dofs, k) of unit loads at the ports."""
-        return self.fe.loads
-
-    def back_substitute(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve ``K x = rhs`` with the stored factorisation, BLAS on one thread (the same bits
-        in any process)."""
-        with one_thread():
-            return self._lu.solve(np.ascontiguousarray(rhs))
-
-    def solve_reduced(self, forces: object) -> np.ndarray:
-        """Reduced displacements (n_dofs, n) for loads (n, k)."""
-        return self.back_substitute(self.fe.loads @ self.check_forces(forces).T)
-
-    def pose_of(self, reduced: np.ndarray) -> np.ndarray:
-        """Stage pose(s) [µm, µrad] about the origin of reduced displacement(s): (6,) or (6, n)."""
-        with one_thread():
-            return self.fe.fit @ reduced[self.fe.stage_idx]
-
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The stage's vertices (m, 3) [mm] and their displacements (m, 3) [mm]."""
         points = self.fe.coors[self.fe.stage_vertices]
         return points, np.asarray(reduced)[self.fe.stage_idx].reshape(-1, 3)
-
-    def compliance(self) -> np.ndarray:
-        """Pose per unit load (6, k): rows x y z θx θy θz [µm, µrad], columns the ports."""
-        if self._compliance is None:
-            self._compliance = self.pose_of(self.solve_reduced(np.eye(self.n_loads)))
-        return self._compliance.copy()
-
-    def poses(self, forces: object) -> np.ndarray:
-        """Stage poses (n, 6) [µm, µrad] of loads (n, k) (linear: ``forces @ C.T``)."""
-        return self.check_forces(forces) @ self.compliance().T
 
     def deformed_planform(self, forces: object, scale: float = 1.0) -> np.ndarray:
         """Mid-plane node positions (n_nodes, 2) [mm] of the planform under one load vector,

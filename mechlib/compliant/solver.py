@@ -47,11 +47,11 @@ class MechanismSolver(NonlinearSolver):
         moduli = np.array([layout.young_of(n) for n in layout.names]) / layout.young
         factors = moduli[model.fe.cell_parts]
         groups = model.fe.pb.domain.mesh.cmesh.cell_groups
-        if len(factors) != self.batched._weight.shape[0] or not np.array_equal(
+        if len(factors) != self.batched.weights.shape[0] or not np.array_equal(
             groups, 1 + model.fe.cell_parts
         ):
             raise RuntimeError("the mesh's cells and the tangent's elements differ")
-        self.batched._weight = self.batched._weight * factors[:, None]
+        self.batched.scale_weights(factors)
 
     @property
     def evaluator(self):

@@ -113,6 +113,46 @@ class SVKTangent:
         #: a buffer of their values (built by the first :meth:`upper_values`)
         self._upper: tuple[np.ndarray, np.ndarray, int, np.ndarray] | None = None
 
+    # per-element data, read-only (for a hyper-reduction, its indicators, material regions)
+    @property
+    def element_nodes(self) -> np.ndarray:
+        """Free-node index of every element node, −1 where clamped (n_el, n_ep)."""
+        return _read_only(self._nodes)
+
+    @property
+    def gradients(self) -> np.ndarray:
+        """Basis-function gradients dN/dX at the quadrature points (n_el, n_qp, 3, n_ep)."""
+        return _read_only(self._grad)
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Quadrature weight times det J of every element's points (n_el, n_qp) [mm³]."""
+        return _read_only(self._weight)
+
+    @property
+    def lame(self) -> float:
+        """Lamé's first parameter λ [MPa] of the (isotropic) material."""
+        return self._lame
+
+    @property
+    def shear(self) -> float:
+        """The shear modulus μ [MPa] of the material."""
+        return self._shear
+
+    def scale_weights(self, factors: object) -> None:
+        """Multiply each element's quadrature weights by its factor (n_el,) > 0: a stiffer or
+        softer material region (Young's modulus times the factor, Poisson's ratio the same).
+
+        Raises ``ValueError`` if ``factors`` is not one finite positive number per element.
+        """
+        f = np.asarray(factors, dtype=float)
+        if f.shape != (self._weight.shape[0],) or not np.all(np.isfinite(f) & (f > 0)):
+            raise ValueError(
+                f"factors must be {self._weight.shape[0]} finite positive numbers (one per "
+                f"element), got shape {f.shape}"
+            )
+        self._weight = self._weight * f[:, None]
+
     def pattern(self) -> sp.csr_array:
         """The CSR pattern of :meth:`matrix` (symmetric), with every stored value 1."""
         shape = (self.n_dofs, self.n_dofs)
@@ -179,7 +219,7 @@ class SVKTangent:
         with one_thread():
             for start in range(0, n_el, self.chunk):
                 cells = slice(start, start + self.chunk)
-                self._element_matrices(nodal[self._nodes[cells]], cells, self._values[cells])
+                self.element_matrices(nodal[self._nodes[cells]], cells, self._values[cells])
         return self._values
 
     def internal_force(self, u: object) -> np.ndarray | None:
@@ -207,7 +247,7 @@ class SVKTangent:
         with one_thread():
             for start in range(0, n_el, self.chunk):
                 cells = slice(start, start + self.chunk)
-                out = self._element_forces(nodal[self._nodes[cells]], cells)
+                out = self.element_forces(nodal[self._nodes[cells]], cells)
                 if out is None:
                     return None
                 forces[cells] = out
@@ -237,7 +277,7 @@ class SVKTangent:
             c[..., i, i] += shift
         return c
 
-    def _element_forces(self, disp: np.ndarray, cells: slice) -> np.ndarray | None:
+    def element_forces(self, disp: np.ndarray, cells: slice) -> np.ndarray | None:
         """Internal forces (m, 3 n_ep), DOFs ordered (component, node), or ``None`` if an
         element inverts: ``Σ_q w_q P_q ∇N_q`` with the first Piola–Kirchhoff stress P = F S
         (the same as ``Σ_q w_q B_qᵀ S_q``, without forming B)."""
@@ -252,7 +292,7 @@ class SVKTangent:
         flat = p.transpose(0, 2, 1, 3).reshape(m, 3, 3 * n_qp)
         return (flat @ grad.reshape(m, 3 * n_qp, n_ep)).reshape(m, 3 * n_ep)
 
-    def _element_matrices(self, disp: np.ndarray, cells: slice, out: np.ndarray) -> None:
+    def element_matrices(self, disp: np.ndarray, cells: slice, out: np.ndarray) -> None:
         """Write into ``out`` (m, 3 n_ep, 3 n_ep) the tangents, DOFs ordered (component, node),
         of the elements ``cells`` with nodal displacements ``disp`` (m, n_ep, 3).
 
@@ -293,6 +333,12 @@ class SVKTangent:
                 else:
                     blocks[:, c, :, d, :] += block
                     blocks[:, d, :, c, :] += block
+
+
+def _read_only(a: np.ndarray) -> np.ndarray:
+    view = a.view()
+    view.flags.writeable = False
+    return view
 
 
 def _det3(a: np.ndarray) -> np.ndarray:

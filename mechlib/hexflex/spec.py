@@ -21,9 +21,11 @@ from mechlib.params import check_choice, check_float, check_int
 
 #: FE mesh recipes a :class:`ModelSpec` names
 MESHES: tuple[str, ...] = ("default", "lean")
-#: The modules a HexFlex task runs (the linear model, the lean model, the non-linear solver, the
-#: finite-rotation pose): its cache keys' code fingerprint follows their imports.
+#: The modules a HexFlex task runs (this specification, which builds the model and names the solve
+#: method, the linear model, the lean model, the non-linear solver, the finite-rotation pose): its
+#: cache keys' code fingerprint follows their imports.
 TASK_MODULES: tuple[str, ...] = (
+    "mechlib.hexflex.spec",
     "mechlib.hexflex.fe.model",
     "mechlib.hexflex.fe.lean",
     "mechlib.fe.nonlinear",

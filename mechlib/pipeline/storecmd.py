@@ -7,7 +7,6 @@ clean          refuse a work tree with uncommitted changes (``make store`` start
 pack           collect every FE task a build logged into the store, with its provenance
                (``make store``)
 check          recompute a sample of the store's tasks cold, seeded by the commit (``make test``)
-rekey          re-key a format-3 store computed by the current code to format 4 (no run solved)
 add-snapshots  add the meta-model page's reduced-order-model snapshots (full fields) to the store,
                read from the build's FE cache or solved, its runs kept byte for byte
 =============  ====================================================================================
@@ -23,8 +22,6 @@ import platform
 import subprocess
 import sys
 from pathlib import Path
-
-import numpy as np
 
 from mechlib import fespecs as fespecs  # the FE families a store holds, registered
 from mechlib.campaign import store
@@ -162,22 +159,6 @@ def _clean(args: argparse.Namespace) -> int:
     return 0
 
 
-def _rekeyed_kept(folder: Path, keys: set[str]) -> dict | None:
-    """The ``rekeyed`` record of the store a pack replaces, with how many of its entries the new
-    store keeps (``kept``): a repack that adds runs leaves the re-keyed ones' provenance."""
-    try:
-        old = store.read_manifest(folder)
-        rekeyed = old.get("rekeyed")
-        if not rekeyed:
-            return None
-        with np.load(folder / store.RESULTS) as data:
-            kept = len(keys & set(data["keys"].tolist()))
-    except (OSError, store.StoreError, KeyError, ValueError) as err:
-        print(f"store: the replaced store's re-keying record not carried over ({err})")
-        return None
-    return {**rekeyed, "kept": kept} if kept else None
-
-
 def _pack(args: argparse.Namespace) -> int:
     head = clean_commit(args.commit)
     entries = store.entries_from_cache(args.log, args.cache)
@@ -191,9 +172,6 @@ def _pack(args: argparse.Namespace) -> int:
         # whether those seconds solved every run (an empty FE cache) or resumed from a cache
         "from_empty": args.from_empty,
     }
-    rekeyed = _rekeyed_kept(Path(args.store), {e.key for e in entries})
-    if rekeyed:
-        provenance["rekeyed"] = rekeyed
     folder = store.write_store(entries, args.store, provenance)
     m = store.read_manifest(folder)
     print(f"store: {len(entries)} FE tasks ({m['runs']}) written to {folder}")
@@ -223,19 +201,6 @@ def _check(args: argparse.Namespace) -> int:
         f"largest pose (or snapshot field) component"
     )
     return 1 if bad else 0
-
-
-def _rekey(args: argparse.Namespace) -> int:
-    from mechlib.campaign.rekey import rekey_store
-
-    manifest, n = rekey_store(args.store, clean_commit())
-    old = manifest["rekeyed"]["from"]["fingerprints"]
-    print(
-        f"store: {n} entries ({manifest['runs']}) of {args.store} re-keyed from format 3 "
-        f"(byte fingerprints {old}, the current code's) to format {manifest['version']} "
-        f"(fingerprints {manifest['fingerprints']}); results unchanged, sha256 {manifest['sha256']}"
-    )
-    return 0
 
 
 def _add_snapshots(args: argparse.Namespace) -> int:
@@ -282,9 +247,6 @@ def parser() -> argparse.ArgumentParser:
     check.add_argument("--seed", type=int, default=None, help="default: from the commit")
     check.add_argument("--workers", type=int, default=2, help="processes recomputing it")
     check.set_defaults(func=_check)
-    rekey = sub.add_parser("rekey", help="a format-3 store of the current code, re-keyed")
-    rekey.add_argument("--store", type=Path, required=True)
-    rekey.set_defaults(func=_rekey)
     snaps = sub.add_parser("add-snapshots", help="the ROM's snapshot fields into the store")
     snaps.add_argument("--store", type=Path, default=STORE_DIR)
     snaps.add_argument("--records", type=Path, default=DEFAULT_BUILD / "records")

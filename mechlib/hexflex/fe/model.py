@@ -17,8 +17,7 @@ from functools import partial
 
 import numpy as np
 
-from mechlib.blas import one_thread
-from mechlib.fe.factor import factorise
+from mechlib.fe.linear import FactorisedModel
 from mechlib.fe.sfepy_base import assemble_stiffness, integral
 from mechlib.hexflex import geometry as geo
 from mechlib.hexflex.fe import mesh as ms
@@ -61,7 +60,7 @@ def check_settings(
 
 
 @dataclass
-class HexFlexModel:
+class HexFlexModel(FactorisedModel):
     """A linear FE model of one geometry, with its factorised stiffness.
 
     Parameters
@@ -128,56 +127,22 @@ class HexFlexModel:
         t1 = time.perf_counter()
         self.fe = fe.build(g, self.planar, self.element, self.young, self.poisson, self.body_factor)
         t2 = time.perf_counter()
-        self._matrix = self._assemble()
+        matrix = self._assemble()
         t3 = time.perf_counter()
-        self._lu = factorise(self._matrix)
+        self.set_stiffness(matrix)
         t4 = time.perf_counter()
         self.timings.update(mesh=t1 - t0, setup=t2 - t1, assembly=t3 - t2, factorisation=t4 - t3)
         self.cell_parts = self.fe.cell_parts
-        self._compliance: np.ndarray | None = None
 
     def _assemble(self):
         """Tangent (= stiffness) matrix of the Problem's own equations, reduced to free DOFs."""
         return assemble_stiffness(self.fe.pb, self.n_dofs)
 
-    # public API -----------------------------------------------------------------------------
-    @property
-    def n_dofs(self) -> int:
-        """Number of free degrees of freedom (after clamping the ground)."""
-        return self.fe.n_dofs
-
+    # public API (and FactorisedModel's: solve_reduced, pose_of, compliance, poses …) ---------
     def check_forces(self, forces: object) -> np.ndarray:
         """Actuator forces as an (n, 6) array [N], each within ``±MAX_FORCE_N``."""
         f = np.asarray(forces, dtype=float)
         return check_forces("forces [N]", f[None, :] if f.ndim == 1 else f)
-
-    def assembled_stiffness(self):
-        """The reduced stiffness matrix (free DOFs, SciPy sparse) [N/mm]."""
-        return self._matrix
-
-    def load_vectors(self) -> np.ndarray:
-        """Reduced load vectors (n_dofs, 6) of unit actuator forces (columns as in Eq 4)."""
-        return self.fe.loads
-
-    def solve_reduced(self, forces: object) -> np.ndarray:
-        """Reduced displacement vectors (n_dofs, n) for actuator forces (n, 6) [N]."""
-        f = self.check_forces(forces)
-        return self.back_substitute(self.fe.loads @ f.T)
-
-    def back_substitute(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve ``K x = rhs`` with the stored factorisation (rhs (n_dofs,) or (n_dofs, n)).
-
-        BLAS runs on one thread here: SuperLU's multi-right-hand-side solve goes through BLAS,
-        whose multi-threaded kernels change the last bits with the thread count, and a worker
-        process (one thread) must return the same numbers as the main process.
-        """
-        with one_thread():
-            return self._lu.solve(np.ascontiguousarray(rhs))
-
-    def pose_of(self, reduced: np.ndarray) -> np.ndarray:
-        """Stage pose(s) [µm, µrad] of reduced displacement vector(s): (6,) or (6, n)."""
-        with one_thread():  # see back_substitute
-            return self.fe.fit @ reduced[self.fe.stage_idx]
 
     def stage_motion(self, reduced: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The stage's nodes (m, 3) [mm] and their displacements (m, 3) [mm] in the reduced
@@ -185,13 +150,6 @@ class HexFlexModel:
         registration (:func:`mechlib.fe.finite_pose.finite_poses`)."""
         points = self.fe.coors[geo.in_stage(self.fe.coors, self.geometry)]
         return points, np.asarray(reduced)[self.fe.stage_idx].reshape(-1, 3)
-
-    def poses(self, forces: object) -> np.ndarray:
-        """Stage poses (n, 6) [µm, µrad] for actuator forces (n, 6) [N]: ``forces @ C.T`` with
-        the :meth:`compliance` C (the pose is linear in the forces, so six back-substitutions
-        serve any number of load cases: on the identified model 250 cases took 6.7 s as
-        back-substitutions, 0.2 s so, and agree within 4e-13 of the largest component)."""
-        return self.check_forces(forces) @ self.compliance().T
 
     def poses_plain_sfepy(self, forces: object) -> np.ndarray:
         """Stage poses (n, 6) by SfePy's own ``Problem.solve()``, one full solve per load case.
@@ -236,12 +194,6 @@ class HexFlexModel:
             full = state.get_state_parts()["u"].reshape(-1, 3)
             out[n] = p.fit @ full[: len(p.coors)][stage].ravel()
         return out
-
-    def compliance(self) -> np.ndarray:
-        """Pose per unit actuator force (6, 6): rows x y z θx θy θz, columns T1D1 … T3D2."""
-        if self._compliance is None:
-            self._compliance = self.pose_of(self.solve_reduced(np.eye(6)))
-        return self._compliance.copy()
 
     def port_compliance(self) -> np.ndarray:
         """Work-conjugate port compliance (6, 6) [µm/N]: ``Bᵀ K⁻¹ B`` for the unit load vectors.

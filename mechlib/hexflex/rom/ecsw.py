@@ -48,7 +48,7 @@ def element_basis(tangent: SVKTangent, basis: np.ndarray, cells: np.ndarray) -> 
     """
     n = basis.shape[1]
     nodal = np.concatenate([basis.reshape(-1, 3, n), np.zeros((1, 3, n))])  # row −1: clamped
-    ve = nodal[tangent._nodes[cells]]  # (m, n_ep, 3, n)
+    ve = nodal[tangent.element_nodes[cells]]  # (m, n_ep, 3, n)
     return np.ascontiguousarray(ve.transpose(0, 2, 1, 3)).reshape(len(cells), -1, n)
 
 
@@ -81,7 +81,7 @@ def nonlinear_contributions(
         If a state inverts an element (det F ≤ 0).
     """
     chunk = check_int("chunk", chunk, low=1, high=5000)
-    n_el, n_ep = tangent._nodes.shape
+    n_el, n_ep = tangent.element_nodes.shape
     n_s, n = states.shape
     out = np.empty((n_s, 2, n, n_el))
     disp = basis @ states.T  # (n_dofs, n_s)
@@ -92,12 +92,12 @@ def nonlinear_contributions(
             cells = np.arange(start, stop)
             ve = element_basis(tangent, basis, cells)
             k0 = np.empty((len(cells), 3 * n_ep, 3 * n_ep))
-            tangent._element_matrices(np.zeros((len(cells), n_ep, 3)), cells, k0)
-            local = nodal[tangent._nodes[cells]]  # (m, n_ep, 3, n_s)
+            tangent.element_matrices(np.zeros((len(cells), n_ep, 3)), cells, k0)
+            local = nodal[tangent.element_nodes[cells]]  # (m, n_ep, 3, n_s)
             for s in range(n_s):
                 x = local[..., s]
-                plus = tangent._element_forces(x, cells)
-                minus = tangent._element_forces(-x, cells)
+                plus = tangent.element_forces(x, cells)
+                minus = tangent.element_forces(-x, cells)
                 if plus is None or minus is None:
                     raise ValueError(f"training state {s} inverts an element (det F <= 0)")
                 flat = x.transpose(0, 2, 1).reshape(len(cells), -1)  # (component, node)

@@ -110,20 +110,20 @@ def projected_internal_force(
     """
     chunk = check_int("chunk", chunk, low=1)
     q = np.asarray(coordinates, dtype=float)
-    n_el = tangent._nodes.shape[0]
+    n_el = tangent.element_nodes.shape[0]
     out = np.zeros((len(q), tests.shape[1]))
     inverted = np.zeros(len(q), dtype=bool)
     with one_thread():
         for start in range(0, n_el, chunk):
             sel = np.arange(start, min(start + chunk, n_el))
-            grad = tangent._grad[sel]
+            grad = tangent.gradients[sel]
             h = _gradients(grad, element_basis(tangent, basis, sel))  # (m, n_qp, 3, 3, n)
             ga = _gradients(grad, element_basis(tangent, tests, sel))  # (m, n_qp, 3, 3, k)
             points = h.shape[0] * h.shape[1]
             # ∂u_c/∂X_j of every state: (points, 3 c, 3 j, state), one row a (point, c, j)
             g = (h.reshape(-1, h.shape[-1]) @ q.T).reshape(points, 3, 3, len(q))
-            p = _first_piola(g, tangent._lame, tangent._shear, inverted)
-            p *= tangent._weight[sel].reshape(-1)[:, None, None, None]  # w F S
+            p = _first_piola(g, tangent.lame, tangent.shear, inverted)
+            p *= tangent.weights[sel].reshape(-1)[:, None, None, None]  # w F S
             out += p.reshape(points * 9, len(q)).T @ ga.reshape(points * 9, -1)
     return out, inverted
 

@@ -241,7 +241,7 @@ class ReducedOrderModel:
                 info.update(contributions_s=t2 - t1, fit_s=time.perf_counter() - t2)
                 info["ecsw_error"] = error
             else:
-                cells = np.arange(tangent._nodes.shape[0])
+                cells = np.arange(tangent.element_nodes.shape[0])
                 weights = np.ones(len(cells))
             t3 = time.perf_counter()
             poly = polynomial_force(tangent, basis, cells, weights)

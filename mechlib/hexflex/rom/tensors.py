@@ -116,7 +116,7 @@ def polynomial_force(
     """
     n = basis.shape[1]
     iu, ju = np.triu_indices(n)
-    d6 = tangent._lame * np.outer(np.arange(6) < 3, np.arange(6) < 3) + 2.0 * tangent._shear * (
+    d6 = tangent.lame * np.outer(np.arange(6) < 3, np.arange(6) < 3) + 2.0 * tangent.shear * (
         np.diag([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])
     )
     root = np.linalg.cholesky(d6)  # D = R Rᵀ: Σ Qᵀ D Q as one symmetric rank-k update
@@ -128,8 +128,8 @@ def polynomial_force(
             sel = cells[start : start + chunk]
             ve = element_basis(tangent, basis, sel).reshape(len(sel), 3, -1, n)  # (m, c, a, n)
             # G[m, q, c, j, k] = Σ_a dN_a/dX_j V[a, c, k]: displacement gradient per basis vector
-            grad = np.einsum("mqja,mcak->mqcjk", tangent._grad[sel], ve)
-            w = (tangent._weight[sel] * weights[start : start + chunk, None]).reshape(-1)
+            grad = np.einsum("mqja,mcak->mqcjk", tangent.gradients[sel], ve)
+            w = (tangent.weights[sel] * weights[start : start + chunk, None]).reshape(-1)
             g = grad.reshape(-1, 3, 3, n)  # (P, c, j, k)
             lin = np.stack([0.5 * (g[:, j, m] + g[:, m, j]) for j, m in PAIRS], axis=1)
             quad = np.stack(

@@ -25,9 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from mechlib.blas import one_thread
 from mechlib.fe import sfepy_base as fe
-from mechlib.fe.factor import factorise
+from mechlib.fe.linear import FactorisedStiffness
 from mechlib.fe.nonlinear import NonlinearSolver, SolveStats
 from mechlib.hexflex.geometry import AL7075_POISSON, AL7075_YOUNG_MPA, MAX_POISSON
 from mechlib.hexflex.studies.elastica import MAX_ALPHA, TipResponse, check_alpha, elastica_tip
@@ -73,7 +72,7 @@ class CantileverFE:
     coors: np.ndarray  # every field DOF node's reference coordinates (n_nodes, 3) [mm]
 
 
-class Cantilever:
+class Cantilever(FactorisedStiffness):
     """A clamped Q2 cantilever with a dead transverse end load, solvable by ``NonlinearSolver``.
 
     Parameters
@@ -126,9 +125,8 @@ class Cantilever:
         #: bending stiffness EI about y [N mm²]
         self.bending_stiffness = self.young * self.width * self.depth**3 / 12.0
         self.fe = self._build()
-        self._matrix = self._assemble()
+        self.set_stiffness(self._assemble(), factorise_now=False)
         self._load = self._end_load()
-        self._lu = None
         nodes = self.fe.coors
         self._end = np.flatnonzero(np.abs(nodes[:, 0] - self.length) <= _REGION_TOL * self.length)
         self._tip = self._end[np.argmin(np.linalg.norm(nodes[self._end, 1:], axis=1))]
@@ -170,14 +168,7 @@ class Cantilever:
         """
         if not self.clamped:
             raise ValueError("clamped must be True to solve: a floating cantilever is singular")
-        if self._lu is None:
-            self._lu = factorise(self._matrix)
-        with one_thread():
-            return self._lu.solve(np.ascontiguousarray(rhs))
-
-    def assembled_stiffness(self):
-        """The reduced linear stiffness (SfePy's ``dw_lin_elastic``, SciPy sparse) [N/mm]."""
-        return self._matrix
+        return super().back_substitute(rhs)
 
     # the benchmark -----------------------------------------------------------------------------
     def load_for(self, alpha: float) -> float:
