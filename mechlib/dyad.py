@@ -18,6 +18,12 @@ REACH_TOL = 1e-12
 a point) and h² >= −slack in the 5R's forward kinematics (the distal links close the loop)."""
 
 
+def elbow(psi: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """Elbow points B = A + l (cos θ, sin θ), θ = k ψ + γ, for joint readings ψ (N,): (N, 2)."""
+    theta = phi[4] * np.asarray(psi, dtype=float) + phi[5]
+    return np.column_stack([phi[2] + phi[0] * np.cos(theta), phi[3] + phi[0] * np.sin(theta)])
+
+
 def reach_cosine(points: np.ndarray, phi: np.ndarray) -> np.ndarray:
     """``cos`` of the angle at A between A→P and A→B; the leg reaches P iff ``|value| <= 1``.
 

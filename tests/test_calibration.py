@@ -142,7 +142,7 @@ def test_greedy_selection_by_o1_variants_and_d_optimality_agree_with_active_cali
 
 
 def test_catalog_builds_each_mechanism_and_refuses_an_unknown_one() -> None:
-    from mechlib.mechanisms import catalog
+    from mechlib import mechanism_catalog as catalog
 
     sizes = {}
     for name in catalog.NAMES:

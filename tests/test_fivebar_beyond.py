@@ -6,12 +6,12 @@ import json
 
 import pytest
 
+from mechlib import mechanism_catalog as catalog
 from mechlib.calibration import montecarlo as mcarlo
 from mechlib.calibration import statistics as cs
 from mechlib.calibration import study as st
 from mechlib.fivebar import mechanism as fivebar
 from mechlib.fivebar.kinematics import N_LEG_PARAMS
-from mechlib.mechanisms import catalog
 from mechlib.paths import REPO_ROOT
 
 #: coarse lattices, few trials: the tie does not depend on the sizes

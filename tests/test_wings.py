@@ -177,25 +177,16 @@ def test_the_recorder_imports_no_science() -> None:
 
 
 #: the mechanism packages: none imports another's (each is an instance of the shared cores:
-#: the FE core :mod:`mechlib.fe`, the campaign :mod:`mechlib.campaign`, the calibration engine)
+#: the FE core :mod:`mechlib.fe`, the compliant-layout layer :mod:`mechlib.compliant`, the
+#: campaign :mod:`mechlib.campaign`, the calibration engine, the dyad :mod:`mechlib.dyad`);
+#: what names several of them is a composition root above them (:mod:`mechlib.fespecs`,
+#: :mod:`mechlib.mechanism_catalog`)
 MECHANISMS = (
     "mechlib.hexflex",
     "mechlib.parallelogram",
-    "mechlib.compliant",
     "mechlib.fivebar",
     "mechlib.mechanisms",
 )
-#: arrows between mechanism packages still in the code (measured 2026-11-29, each to be
-#: removed; the set may only shrink): the parallelogram is a compliant layout (its
-#: :class:`~mechlib.compliant.layout.Layout` and :class:`~mechlib.compliant.spec.MechanismSpec`
-#: are the generic layout layer's, not yet moved below the mechanisms), and the catalogue of
-#: calibration mechanisms reuses the five-bar's kinematics and mechanism
-CROSSING_LEFT = {
-    ("mechlib.parallelogram.mechanism", "mechlib.compliant.layout"),
-    ("mechlib.parallelogram.ourfe", "mechlib.compliant.spec"),
-    ("mechlib.mechanisms.catalog", "mechlib.fivebar.mechanism"),
-    ("mechlib.mechanisms.rrr3", "mechlib.fivebar.kinematics"),
-}
 
 
 def _mechanism(module: str) -> str | None:
@@ -209,10 +200,15 @@ def test_no_mechanism_package_imports_another_s() -> None:
         for i in imports
         if _mechanism(m) and _mechanism(i) and _mechanism(m) != _mechanism(i)
     }
-    assert crossing <= CROSSING_LEFT, sorted(crossing - CROSSING_LEFT)
-    assert not {
-        (m, i) for m, i in crossing if _in(m, "mechlib.hexflex") or _in(i, "mechlib.hexflex")
-    }
+    assert crossing == set(), sorted(crossing)
+
+
+def test_the_compliant_layer_sits_below_every_mechanism() -> None:
+    """Any planar compliant mechanism is a :class:`~mechlib.compliant.layout.Layout` (the
+    parallelogram is one): the layer imports the FE core and the ground floor, no mechanism."""
+    layer = {i for m, imports in GRAPH.items() if _in(m, "mechlib.compliant") for i in imports}
+    outside = {i for i in layer if not _in(i, "mechlib.compliant") and not _in(i, "mechlib.fe")}
+    assert outside <= {"mechlib.params", "mechlib.blas"}, sorted(outside)
 
 
 def test_the_campaign_names_no_mechanism() -> None:

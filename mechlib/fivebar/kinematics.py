@@ -128,9 +128,7 @@ def joint_reading(points: object, phi: object, mode: int) -> np.ndarray:
 
 def elbow(psi: object, phi: object) -> np.ndarray:
     """Elbow points B = A + l (cos θ, sin θ) for joint readings ψ."""
-    phi = check_leg(phi)
-    theta = phi[4] * np.asarray(psi, dtype=float) + phi[5]
-    return np.column_stack([phi[2] + phi[0] * np.cos(theta), phi[3] + phi[0] * np.sin(theta)])
+    return dyad.elbow(psi, check_leg(phi))
 
 
 def forward(

@@ -19,7 +19,6 @@ import numpy as np
 
 from mechlib import dyad
 from mechlib.calibration.mechanism import Leg, Mechanism
-from mechlib.fivebar import kinematics as kin
 from mechlib.params import check_float
 
 UNITS = ("m", "m", "m", "m", "-", "rad")
@@ -127,5 +126,6 @@ def leg_chains(mech: Mechanism, phis: Sequence[np.ndarray], pose: object) -> lis
     out = []
     for leg, p, qk in zip(mech.legs, phis, q, strict=True):
         c = platform_points(r, leg.ik.keywords["attachment"])[0]
-        out.append(np.vstack([p[2:4], kin.elbow([qk], p)[0], c]))
+        b = dyad.elbow(np.array([qk]), np.asarray(p, dtype=float))[0]
+        out.append(np.vstack([p[2:4], b, c]))
     return out

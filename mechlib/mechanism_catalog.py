@@ -3,6 +3,9 @@
 poses and the evaluation poses (a regular slice of the workspace, for the maps, then random poses
 over the whole calibration region). The 5R is its chapter's study
 (:func:`mechlib.fivebar.mechanism.study`), with the chapter's settings by default.
+
+A composition root, like :mod:`mechlib.fespecs`: it names mechanisms of several packages
+(:mod:`mechlib.fivebar`, :mod:`mechlib.mechanisms`), so it sits above them, in none of them.
 """
 
 from __future__ import annotations
