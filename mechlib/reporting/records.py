@@ -22,21 +22,10 @@ import numpy as np
 from mechlib.blasinfo import openblas_kernel
 from mechlib.params import check_float
 from mechlib.paths import records_dir
-from mechlib.reporting import claims, report
-
-
-def _plain(value: Any) -> Any:
-    """Convert numpy scalars/arrays and tuples to JSON-ready Python objects."""
-    if isinstance(value, np.ndarray):
-        return [_plain(v) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, float) and not np.isfinite(value):
-        raise ValueError(f"records hold finite numbers only, got {value!r}")
-    return value
-
+from mechlib.reporting import claims, recordplan, report
+from mechlib.reporting.jsonready import is_number as _is_number
+from mechlib.reporting.jsonready import plain as _plain
+from mechlib.reporting.jsonready import plain_tree as _plain_tree
 
 #: the record keys of claim verdicts: ``claims.<claim id>`` (see :meth:`Recorder.claim`)
 CLAIM_PREFIX = "claims."
@@ -45,25 +34,10 @@ CLAIM_PREFIX = "claims."
 Glue = str | Mapping[str, int | tuple[int, ...]]
 
 
-def _plain_tree(value: Any) -> Any:
-    """:func:`_plain` through mappings too (keys as strings)."""
-    if isinstance(value, Mapping):
-        return {str(k): _plain_tree(v) for k, v in value.items()}
-    if isinstance(value, np.ndarray):
-        return [_plain_tree(v) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_plain_tree(v) for v in value]
-    return _plain(value)
-
-
 #: the folder, under the records folder, of the data a notebook keeps for the bundle
 DATA_DIR = "data"
 #: each notebook's data folder's list of files and their descriptions
 DATA_INDEX = "index.json"
-
-
-def _is_number(value: Any) -> bool:
-    return np.asarray(value).dtype.kind in "iuf"
 
 
 def paste(name: str, value: Any) -> None:
@@ -95,6 +69,12 @@ class Recorder:
         that :meth:`claim` judges (the book's registry: :func:`mechlib.reporting.claimlist.claim`).
         Passed by the notebook, so that the recorder imports no science: the registry reads
         constants of the science packages, the recorder sits below them.
+    plan : mapping of str to recordplan.Entry, optional
+        The chapter's record plan (:mod:`mechlib.reporting.plans`): every key it records, with
+        its tolerance, glue and report rows. With a plan, :meth:`value` takes the value alone
+        (and ``context=`` for rows made from notebook values), refuses a key the plan does not
+        hold, and :meth:`save` refuses a run that left a (not optional) key of it out. Without
+        one (tests, scripts), :meth:`value` takes ``rtol``, ``atol``, ``glue`` and ``row``.
     """
 
     notebook: str
@@ -105,6 +85,11 @@ class Recorder:
     timings: dict[str, float] = field(default_factory=dict)
     data: dict[str, tuple[str, str]] = field(default_factory=dict)
     registry: Callable[[str], claims.ClaimSpec] | None = field(default=None, repr=False)
+    plan: recordplan.Plan | None = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.plan is not None:
+            recordplan.check_plan(self.plan, self.notebook)
 
     def value(
         self,
@@ -115,9 +100,10 @@ class Recorder:
         atol: float | None = None,
         glue: Glue | None = None,
         row: report.RowSpec | Sequence[report.RowSpec] | None = None,
+        context: Mapping[str, Any] | None = None,
     ) -> Any:
         """Record ``value`` under ``key`` with the tolerance a re-run must meet; glue it for the
-        prose and add its report row(s).
+        prose and add its report row(s). With a plan, all but the value come from the plan.
 
         Parameters
         ----------
@@ -134,6 +120,9 @@ class Recorder:
             (as Python ``float``/``int``, what myst-nb formats).
         row : report.Comparison, report.Check, report.Computed or report.NotReproduced, or a list
             Report rows completed with this value (see :mod:`mechlib.reporting.report`).
+        context : dict, optional
+            With a plan: the notebook's values that the key's plan entry builds its rows (or
+            tolerance) from, by name.
 
         Returns
         -------
@@ -143,8 +132,35 @@ class Recorder:
         ------
         ValueError
             A key or glue name used twice, a number without tolerance, a negative tolerance,
-            a non-finite number, or a glued element that is not a number.
+            a non-finite number, or a glued element that is not a number; with a plan, a key it
+            does not hold, a tolerance, glue or row given here, or a context its entry does not
+            read (or a missing one it does).
         """
+        if self.plan is not None:
+            named = {"rtol": rtol, "atol": atol, "glue": glue, "row": row}
+            given = [name for name, v in named.items() if v is not None]
+            if given:
+                raise ValueError(
+                    f"{key}: {self.notebook} records by its plan, which gives the tolerance, "
+                    f"glue and rows: drop {', '.join(given)}= here"
+                )
+            tol, glue, row = recordplan.resolve(self.plan, key, context, self.notebook)
+            rtol, atol = tol.rtol, tol.atol_for(value)
+        elif context is not None:
+            raise ValueError(f"{key}: context= is read by a plan; {self.notebook} has none")
+        return self._record(key, value, rtol=rtol, atol=atol, glue=glue, row=row)
+
+    def _record(
+        self,
+        key: str,
+        value: Any,
+        *,
+        rtol: float | None,
+        atol: float | None,
+        glue: Glue | None,
+        row: report.RowSpec | Sequence[report.RowSpec] | None,
+    ) -> Any:
+        """:meth:`value` once its tolerance, glue and rows are known."""
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
@@ -275,7 +291,9 @@ class Recorder:
         if spec.page != self.notebook:
             raise ValueError(f"claim {claim_id!r} is judged on {spec.page}, not on {self.notebook}")
         verdict = claims.evaluate(spec, {**self.values, **self.timings})
-        self.value(f"{CLAIM_PREFIX}{claim_id}", verdict.word)
+        # a claim's key is its registry entry's, not the plan's
+        key = f"{CLAIM_PREFIX}{claim_id}"
+        self._record(key, verdict.word, rtol=None, atol=None, glue=None, row=None)
         self.report.append({k: _plain(v) for k, v in verdict.row().items()})
         return verdict.word
 
@@ -313,7 +331,19 @@ class Recorder:
 
     def save(self, folder: Path | None = None) -> Path:
         """Write ``<folder>/<notebook>.json`` deterministically and return its path; the data
-        kept by :meth:`add_data` go to ``<folder>/data/<notebook>/`` with an ``index.json``."""
+        kept by :meth:`add_data` go to ``<folder>/data/<notebook>/`` with an ``index.json``.
+
+        Raises
+        ------
+        ValueError
+            With a plan, naming the keys of the plan (not optional) that were not recorded.
+        """
+        missing = recordplan.unrecorded(self.plan, set(self.values)) if self.plan else []
+        if missing:
+            raise ValueError(
+                f"{self.notebook}: keys of its plan were not recorded: {', '.join(missing)} "
+                f"(record them, mark them optional=True, or drop them from the plan)"
+            )
         folder = Path(folder) if folder is not None else records_dir()
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{self.notebook}.json"

@@ -1,0 +1,194 @@
+"""Named tolerances of recorded numbers: how far a re-run may move a value, and why.
+
+A record stores ``rtol`` and ``atol`` (``|a - b| <= atol + rtol * |b|``, see
+:mod:`mechlib.reporting.records`). The chapters' record plans (:mod:`mechlib.reporting.plans`)
+name one of the classes below for each key instead of writing the numbers: the class says which
+kind of numerics produced the value and, in ``why``, why a re-run on another machine (another
+BLAS kernel, another order of summation) stays within it.
+
+The numbers are the ones the chapters used as literals: changing one changes the records.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """How closely a re-run must reproduce a recorded value.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance, ≥ 0.
+    atol : float
+        Absolute tolerance, ≥ 0, in the value's units.
+    why : str
+        One sentence: the numerics behind the value and why a re-run stays within the bounds.
+    peak : float
+        A further absolute tolerance as a fraction of the recorded value's largest magnitude
+        (for arrays whose round-off scales with their largest entry), ≥ 0.
+
+    Raises
+    ------
+    ValueError
+        A negative or non-finite bound, or an empty ``why``.
+    """
+
+    rtol: float = 0.0
+    atol: float = 0.0
+    why: str = ""
+    peak: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("rtol", "atol", "peak"):
+            bound = getattr(self, name)
+            if isinstance(bound, bool) or not isinstance(bound, (int, float)):
+                raise ValueError(f"Tolerance {name} must be a number >= 0, got {bound!r}")
+            if not math.isfinite(bound) or bound < 0:
+                raise ValueError(f"Tolerance {name} must be finite and >= 0, got {bound!r}")
+        if not self.why.strip():
+            raise ValueError("a Tolerance says why a re-run stays within it: why= is empty")
+
+    def atol_for(self, value: Any) -> float:
+        """The absolute tolerance of ``value``: ``atol`` plus ``peak`` times its largest
+        magnitude (just ``atol`` when ``peak`` is 0)."""
+        if not self.peak:
+            return self.atol
+        return self.atol + self.peak * np.abs(np.asarray(value, dtype=float)).max()
+
+
+# --- exact -------------------------------------------------------------------------------------
+
+EXACT = Tolerance(
+    why="integers, booleans, texts, designs, parameters and published numbers carried over: "
+    "no arithmetic in floating point, so every machine gives the same value"
+)
+
+# --- round-off of a fixed sequence of floating-point operations -------------------------------
+
+CLOSED_FORM = Tolerance(
+    rtol=1e-12,
+    why="a closed-form expression of a few dozen operations: each rounds to 1e-16 relative, "
+    "and another order of the operations moves the result by far less than 1e-12",
+)
+CLOSED_FORM_SUM = Tolerance(
+    rtol=1e-10,
+    why="a closed-form sum over a design's points (thousands of terms, e.g. a discrepancy): "
+    "another summation order moves it by ~1e-13 relative",
+)
+ROUNDOFF = Tolerance(
+    rtol=1e-9,
+    why="least squares, medians and sums over printed numbers: a BLAS kernel changes the order "
+    "of the sums and the factorisation, which moves a well-conditioned result by ~1e-13",
+)
+ROUNDOFF_OR_ZERO = Tolerance(
+    rtol=1e-9,
+    atol=1e-9,
+    why="as ROUNDOFF, with an absolute floor for entries that are 0 in exact arithmetic (their "
+    "residue, far below 1e-9, has no relative size)",
+)
+ROUNDOFF_OR_TINY = Tolerance(
+    rtol=1e-9,
+    atol=1e-12,
+    why="as ROUNDOFF, for statistics of which some entries are themselves round-off (~1e-14): "
+    "an absolute floor of 1e-12",
+)
+INVERSE_ROUNDOFF = Tolerance(
+    rtol=1e-9,
+    atol=1e-15,
+    why="the inverse of a well-conditioned matrix with entries up to ~1e-2: round-off relative, "
+    "its exact zeros get an absolute floor of 1e-15",
+)
+NEAR_ZERO = Tolerance(
+    atol=1e-12,
+    why="a quantity of order 1 or less that is 0 (or a small difference) in exact arithmetic: "
+    "its round-off has no relative size, so it is bounded absolutely at 1e-12",
+)
+ROUND_TRIP = Tolerance(
+    atol=1e-9,
+    why="an input returned through a model and its inverse (±1 N forces): what is left is "
+    "round-off, bounded absolutely at 1e-9 of the input's unit",
+)
+MAGNIFIED_ROUNDOFF = Tolerance(
+    rtol=1e-6,
+    atol=1e-9,
+    why="round-off divided by a small number (a printed resolution, a difference of nearly "
+    "equal values): relative 1e-6, with an absolute floor for values near 0",
+)
+CANCELLATION = Tolerance(
+    rtol=1e-6,
+    why="a difference of nearly equal numbers (residuals, small changes): round-off of the "
+    "operands is magnified by the cancellation, up to ~1e-8 relative",
+)
+CANCELLATION_OR_TINY = Tolerance(
+    rtol=1e-6,
+    atol=1e-8,
+    why="as CANCELLATION, for arrays with entries at round-off level (~1e-14) that differ "
+    "between machines: an absolute floor of 1e-8",
+)
+
+# --- iterative solvers: they stop at a tolerance, not at round-off -----------------------------
+
+SOLVER = Tolerance(
+    rtol=1e-6,
+    atol=1e-6,
+    why="an iterative solver (coordinate descent, cross-validated penalty) stopped at its "
+    "convergence tolerance; another kernel may stop one iterate apart, well inside 1e-6",
+)
+SOLVER_NEAR_ZERO = Tolerance(
+    atol=1e-6,
+    why="a quantity an iterative solver leaves near 0 (an intercept of an exactly linear fit): "
+    "bounded absolutely by the solver's tolerance",
+)
+SOLVER_DERIVED = Tolerance(
+    rtol=1e-3,
+    why="a small quantity derived from values known to a solver's tolerance (1e-6): a relative "
+    "difference of ~1e-3 moves by up to ~1e-4 of itself",
+)
+ITERATIVE = Tolerance(
+    rtol=1e-6,
+    why="a fit or an estimate iterated to a stopping tolerance of 1e-8 or below (Gauss–Newton, "
+    "Levenberg–Marquardt, a seeded Monte Carlo): another kernel stops within 1e-6 of it",
+)
+ITERATIVE_PCT = Tolerance(
+    rtol=1e-6,
+    atol=1e-9,
+    why="as ITERATIVE, for a percentage: an absolute floor of 1e-9 percentage points for "
+    "values that are 0 or near it",
+)
+ITERATIVE_ABS = Tolerance(
+    rtol=1e-6,
+    atol=1e-12,
+    why="as ITERATIVE, for arrays with entries near 0: an absolute floor of 1e-12",
+)
+
+# --- finite-element solves ---------------------------------------------------------------------
+
+FE_PCT = Tolerance(
+    rtol=1e-5,
+    atol=1e-9,
+    why="a percentage made from sparse direct FE solves: their condition number costs digits, "
+    "so kernels agree to ~1e-7 relative; a floor of 1e-9 points for values near 0",
+)
+FE_STUDY_PCT = Tolerance(
+    rtol=1e-4,
+    atol=1e-9,
+    why="a small difference of two FE solves (a mesh or model change) in percent: the "
+    "difference magnifies the solves' 1e-7 agreement; a floor of 1e-9 points near 0",
+)
+NONLINEAR_FE = Tolerance(
+    rtol=1e-3,
+    atol=1e-6,
+    why="a non-linear FE solve (Newton iterations over load steps) stopped at its residual "
+    "tolerance: another kernel can stop one iterate apart; a floor of 1e-6 near 0",
+)
+NONLINEAR_FE_REL = Tolerance(
+    rtol=1e-3,
+    why="as NONLINEAR_FE, for a value that is never near 0",
+)

@@ -1,0 +1,134 @@
+"""Record plans and named tolerances: a chapter's keys, tolerances, glue and rows as data."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from mechlib.reporting import plans, report, tolerances
+from mechlib.reporting.records import Recorder, load
+from mechlib.reporting.tolerances import EXACT, ROUNDOFF, Tolerance
+
+PLAN = {
+    "a.count": plans.Entry(tol=EXACT, glue="n_a"),
+    "a.ratio": plans.Entry(
+        tol=ROUNDOFF,
+        glue={"r0": 0},
+        rows=report.Comparison("Table 1", "ratio", [1.0, 2.0], rtol=0.01),
+    ),
+    "a.holds": plans.Entry(
+        tol=EXACT,
+        rows=lambda c: [
+            report.Check("Table 1", "it holds", f"range: {c['span']}", basis="construction")
+        ],
+    ),
+    "a.maybe": plans.Entry(tol=EXACT, optional=True),
+}
+
+
+def planned(**kwargs: object) -> Recorder:
+    return Recorder("demo", paste=lambda name, value: None, plan=PLAN, **kwargs)
+
+
+def test_a_plan_gives_the_same_record_as_the_literal_arguments(tmp_path: Path) -> None:
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.value("a.count", 3, atol=0, glue="n_a")
+    literal.value(
+        "a.ratio",
+        [1.0, 2.0],
+        rtol=1e-9,
+        glue={"r0": 0},
+        row=report.Comparison("Table 1", "ratio", [1.0, 2.0], rtol=0.01),
+    )
+    literal.value(
+        "a.holds",
+        True,
+        row=report.Check("Table 1", "it holds", "range: 1 to 2", basis="construction"),
+    )
+    rec = planned()
+    rec.value("a.count", 3)
+    rec.value("a.ratio", [1.0, 2.0])
+    rec.value("a.holds", True, context={"span": "1 to 2"})
+    one = load(literal.save(tmp_path / "literal"))
+    two = load(rec.save(tmp_path / "plan"))
+    assert one == two
+    assert two["values"]["a.ratio"] == {"value": [1.0, 2.0], "rtol": 1e-9, "atol": 0.0}
+    assert two["report"][1]["ours"] == "range: 1 to 2"
+
+
+def test_an_unrecorded_plan_entry_is_refused_at_save_by_name(tmp_path: Path) -> None:
+    rec = planned()
+    rec.value("a.count", 3)
+    with pytest.raises(ValueError, match=r"not recorded: a\.ratio, a\.holds \(") as error:
+        rec.save(tmp_path)
+    assert "a.maybe" not in str(error.value)  # optional
+    assert not (tmp_path / "demo.json").exists()
+
+
+def test_a_key_not_in_the_plan_and_literal_arguments_are_refused() -> None:
+    rec = planned()
+    with pytest.raises(ValueError, match=r"'a\.other' is not in demo's plan"):
+        rec.value("a.other", 1)
+    with pytest.raises(ValueError, match="drop rtol, glue= here"):
+        rec.value("a.count", 3, rtol=1e-9, glue="n")
+    assert rec.values == {}
+    with pytest.raises(ValueError, match="context= is read by a plan"):
+        Recorder("demo").value("a.count", 3, atol=0, context={"span": ""})
+
+
+def test_rows_from_the_context_need_it_and_only_they_take_one() -> None:
+    rec = planned()
+    with pytest.raises(ValueError, match="pass them as context="):
+        rec.value("a.holds", True)
+    with pytest.raises(ValueError, match=r"reads 'span' from the context, which holds \['s'\]"):
+        rec.value("a.holds", True, context={"s": "1"})
+    with pytest.raises(ValueError, match="reads no context"):
+        rec.value("a.count", 3, context={"span": "1"})
+    rec.value("a.holds", False, context={"span": "0 to 1"})
+    assert rec.report[0]["ours"] == "range: 0 to 1"
+
+
+def test_a_plan_entry_and_a_plan_are_checked() -> None:
+    with pytest.raises(TypeError, match="Tolerance or tol"):
+        plans.Entry(tol=1e-9)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="report rows"):
+        plans.Entry(tol=EXACT, rows=["a row"])  # type: ignore[list-item]
+    with pytest.raises(TypeError, match="'x' must be a str mapped to an Entry"):
+        Recorder("demo", plan={"x": EXACT})  # type: ignore[dict-item]
+    with pytest.raises(ValueError, match="no record plan for 'no_such_notebook'"):
+        plans.load("no_such_notebook")
+    with pytest.raises(ValueError, match="notebook's name"):
+        plans.load("../x")
+
+
+def test_a_tolerance_class_stores_the_literal_numbers() -> None:
+    assert (ROUNDOFF.rtol, ROUNDOFF.atol) == (1e-9, 0.0)
+    assert (EXACT.rtol, EXACT.atol) == (0.0, 0.0)
+    named = [v for v in vars(tolerances).values() if isinstance(v, Tolerance)]
+    assert len({(t.rtol, t.atol, t.peak, t.why) for t in named}) == len(named)
+    assert all(t.why.strip() for t in named)
+    scaled = Tolerance(rtol=1e-6, peak=1e-6, why="round-off of the largest entry")
+    assert scaled.atol_for(np.array([-3.0, 2.0])) == 1e-6 * np.abs(np.array([-3.0, 2.0])).max()
+    assert ROUNDOFF.atol_for([5.0]) == 0.0
+
+
+def test_a_tolerance_with_a_bad_bound_or_no_reason_is_refused() -> None:
+    with pytest.raises(ValueError, match="rtol must be finite and >= 0, got -1"):
+        Tolerance(rtol=-1, why="x")
+    with pytest.raises(ValueError, match="atol must be a number"):
+        Tolerance(atol=True, why="x")
+    with pytest.raises(ValueError, match="why= is empty"):
+        Tolerance(rtol=1e-9)
+
+
+def test_a_tolerance_from_the_context() -> None:
+    plan = {
+        "b.x": plans.Entry(
+            tol=lambda c: Tolerance(atol=c["floor"], why="a floor the notebook computes")
+        )
+    }
+    rec = Recorder("demo", paste=lambda name, value: None, plan=plan)
+    rec.value("b.x", 2.0, context={"floor": 0.5})
+    assert rec.values["b.x"] == {"value": 2.0, "rtol": 0.0, "atol": 0.5}
