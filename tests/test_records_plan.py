@@ -132,3 +132,72 @@ def test_a_tolerance_from_the_context() -> None:
     rec = Recorder("demo", paste=lambda name, value: None, plan=plan)
     rec.value("b.x", 2.0, context={"floor": 0.5})
     assert rec.values["b.x"] == {"value": 2.0, "rtol": 0.0, "atol": 0.5}
+
+
+def test_extremes_glue_the_same_indices_and_labels_as_argmin_argmax(tmp_path: Path) -> None:
+    value = np.array([3.0, 1.0, 5.0, 5.0])
+    labels = ["x", "y", "z", "w"]
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.value("e.v", value, rtol=1e-9, glue={"v_lo": 1, "v_hi": 2, "v0": 0})
+    literal.text("v_hi_label", labels[int(value.argmax())], of="e.v")
+    pasted: dict[str, object] = {}
+    plan = {
+        "e.v": plans.Entry(
+            tol=ROUNDOFF,
+            glue=plans.Extremes(
+                low="v_lo", high="v_hi", labels=labels, high_label="v_hi_label", fixed={"v0": 0}
+            ),
+        )
+    }
+    rec = Recorder("demo", paste=pasted.__setitem__, plan=plan)
+    rec.value("e.v", value)
+    assert load(literal.save(tmp_path / "a")) == load(rec.save(tmp_path / "b"))
+    assert pasted == {"v_lo": 1.0, "v_hi": 5.0, "v0": 3.0, "v_hi_label": "z"}
+    grid = plans.Extremes(low="g_lo", high="g_hi").glue(np.array([[1.0, -2.0], [7.0, 0.0]]))
+    assert grid == ({"g_lo": (0, 1), "g_hi": (1, 0)}, {})
+
+
+def test_extremes_refuse_what_they_cannot_glue() -> None:
+    with pytest.raises(ValueError, match="glues nothing"):
+        plans.Extremes()
+    with pytest.raises(ValueError, match="needs labels"):
+        plans.Extremes(low_label="lo")
+    with pytest.raises(ValueError, match="names a glue twice"):
+        plans.Extremes(low="a", high="a")
+    with pytest.raises(ValueError, match=r"2 labels for a value of shape \(3,\)"):
+        plans.Extremes(low_label="lo", labels=["a", "b"]).glue([1.0, 2.0, 3.0])
+
+
+def test_a_mapping_records_one_key_per_name() -> None:
+    rec = Recorder("demo", paste=lambda name, value: None)
+    geometry = {"width": 2.0, "depth": 3.0}
+    assert rec.mapping("geometry", geometry, rtol=1e-6) is geometry
+    assert rec.values == {
+        "geometry.width": {"value": 2.0, "rtol": 1e-6, "atol": 0.0},
+        "geometry.depth": {"value": 3.0, "rtol": 1e-6, "atol": 0.0},
+    }
+
+
+def test_skipped_glue_nan_with_the_reason_as_the_loop_it_replaces() -> None:
+    literal = Recorder("demo", paste=lambda name, value: None)
+    for name in ("q_dep", "q_lin"):
+        literal.text(name, float("nan"), why="not computed: one order")
+    literal.text("q_label", "none", why="not computed: one order")
+    plan = {
+        "q.v": plans.Entry(
+            tol=ROUNDOFF,
+            glue=plans.Extremes(high="q_lin", labels=["a"], high_label="q_label"),
+            optional=True,
+        ),
+        "q.empty": plans.Entry(tol=EXACT, optional=True),
+    }
+    pasted: dict[str, object] = {}
+    rec = Recorder("demo", paste=pasted.__setitem__, plan=plan)
+    rec.skipped("q_dep", why="not computed: one order")
+    rec.skipped(["q.v"], why="not computed: one order")
+    assert rec.glued == literal.glued
+    assert np.isnan(pasted["q_dep"]) and pasted["q_label"] == "none"
+    with pytest.raises(ValueError, match="glues nothing"):
+        rec.skipped("q.empty", why="x")
+    with pytest.raises(ValueError, match="say why"):
+        rec.skipped("other", why=" ")

@@ -9,8 +9,10 @@ with its value alone, ``rec.value(key, value)``, and the recorder takes the rest
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
 
 from mechlib.reporting import report
 from mechlib.reporting.tolerances import Tolerance
@@ -32,8 +34,9 @@ class Entry:
     ----------
     tol : Tolerance or callable
         Its named tolerance (:mod:`mechlib.reporting.tolerances`), or ``tol(context)`` giving one.
-    glue : str or mapping, optional
-        Glue name of a scalar, or ``{name: index}`` for elements of an array.
+    glue : str, mapping or Extremes, optional
+        Glue name of a scalar, ``{name: index}`` for elements of an array, or
+        :class:`Extremes` for its smallest and largest elements (and their labels).
     rows : RowSpec, sequence of RowSpec, or callable
         Its report rows, or ``rows(context)`` giving them when their text quotes values the
         notebook computes (the notebook passes those as ``context=``).
@@ -47,7 +50,7 @@ class Entry:
     """
 
     tol: Tolerance | TolOf
-    glue: PlanGlue | None = None
+    glue: PlanGlue | Extremes | None = None
     rows: report.RowSpec | Sequence[report.RowSpec] | RowsOf = ()
     optional: bool = False
 
@@ -68,8 +71,91 @@ class Entry:
         return callable(self.rows) or not isinstance(self.tol, Tolerance)
 
 
+@dataclass(frozen=True)
+class Extremes:
+    """Glue for the smallest and largest elements of a recorded array, and their labels.
+
+    Where a notebook wrote ``glue={"lo": int(a.argmin()), "hi": int(a.argmax())}`` and
+    ``rec.text("lo_component", R[int(a.argmin())], of=key)``, its plan writes
+    ``glue=Extremes(low="lo", high="hi", labels=R, low_label="lo_component")``: the same glue
+    entries, indices and texts.
+
+    Parameters
+    ----------
+    low, high : str, optional
+        Glue names of the smallest and the largest element (first one on ties, as ``argmin``).
+    labels : sequence of str
+        The elements' labels (a 1-D value), for ``low_label`` and ``high_label``.
+    low_label, high_label : str, optional
+        Glue names of the labels of the smallest and the largest element (texts made of the key).
+    fixed : mapping of str to index
+        Further glue names of elements at fixed indices, as ``glue={name: index}``.
+
+    Raises
+    ------
+    ValueError
+        No glue name at all, one named twice, or a label glue without labels.
+    """
+
+    low: str | None = None
+    high: str | None = None
+    labels: Sequence[str] = ()
+    low_label: str | None = None
+    high_label: str | None = None
+    fixed: Mapping[str, int | tuple[int, ...]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not (self.low or self.high or self.low_label or self.high_label):
+            raise ValueError("Extremes glues nothing: give low, high, low_label or high_label")
+        names = [self.low, self.high, self.low_label, self.high_label, *self.fixed]
+        names = [n for n in names if n]
+        if len(set(names)) != len(names):
+            raise ValueError(f"Extremes names a glue twice: {names}")
+        if (self.low_label or self.high_label) and not self.labels:
+            raise ValueError(f"Extremes {self.low_label or self.high_label!r} needs labels=")
+
+    def glue(self, value: Any) -> tuple[dict[str, int | tuple[int, ...]], dict[str, str]]:
+        """The glue ``{name: index}`` of ``value``'s extremes and the ``{name: label}`` texts.
+
+        Raises
+        ------
+        ValueError
+            Labels that are not one per element of a 1-D value.
+        """
+        array = np.asarray(value)
+        if self.labels and (array.ndim != 1 or len(self.labels) != array.size):
+            raise ValueError(
+                f"Extremes: {len(self.labels)} labels for a value of shape {array.shape}"
+            )
+        where = {"low": array.argmin(), "high": array.argmax()}
+        at = {
+            side: int(i)
+            if array.ndim == 1
+            else tuple(int(j) for j in np.unravel_index(i, array.shape))
+            for side, i in where.items()
+        }
+        indices = dict(self.fixed) | {
+            name: at[side] for side, name in (("low", self.low), ("high", self.high)) if name
+        }
+        texts = {
+            name: str(self.labels[at[side]])
+            for side, name in (("low", self.low_label), ("high", self.high_label))
+            if name
+        }
+        return indices, texts
+
+
 #: a chapter's plan: every record key it writes
 Plan = Mapping[str, Entry]
+
+
+def glue_names(entry: Entry) -> tuple[list[str], list[str]]:
+    """The glue names of an entry: those of numbers, and those of labels (texts)."""
+    glue = entry.glue
+    if isinstance(glue, Extremes):
+        numbers = [n for n in (glue.low, glue.high, *glue.fixed) if n]
+        return numbers, [n for n in (glue.low_label, glue.high_label) if n]
+    return ([glue] if isinstance(glue, str) else list(glue or {})), []
 
 
 def check_plan(plan: Plan, notebook: str) -> None:
@@ -89,7 +175,7 @@ def check_plan(plan: Plan, notebook: str) -> None:
 
 def resolve(
     plan: Plan, key: str, context: Mapping[str, Any] | None, notebook: str
-) -> tuple[Tolerance, PlanGlue | None, list[report.RowSpec]]:
+) -> tuple[Tolerance, PlanGlue | Extremes | None, list[report.RowSpec]]:
     """The tolerance, glue and report rows the plan gives ``key`` in this ``context``.
 
     Raises

@@ -26,6 +26,7 @@ from mechlib.reporting import claims, recordplan, report
 from mechlib.reporting.jsonready import is_number as _is_number
 from mechlib.reporting.jsonready import plain as _plain
 from mechlib.reporting.jsonready import plain_tree as _plain_tree
+from mechlib.reporting.recordhelpers import RecordHelpers
 
 #: the record keys of claim verdicts: ``claims.<claim id>`` (see :meth:`Recorder.claim`)
 CLAIM_PREFIX = "claims."
@@ -48,7 +49,7 @@ def paste(name: str, value: Any) -> None:
 
 
 @dataclass
-class Recorder:
+class Recorder(RecordHelpers):
     """Collects the key numbers, the numbers quoted in the prose and the report rows of one
     notebook.
 
@@ -56,7 +57,7 @@ class Recorder:
     elements) available to the prose under a glue name, and adds the report row that compares
     it with the thesis: every number the book quotes is then checked against the committed
     references. Text that is not a number goes to the prose through :meth:`text`, which says
-    what it is made from or why it is not checked.
+    what it is made from or why it is not checked. Shorthands: :meth:`mapping`, :meth:`skipped`.
 
     Parameters
     ----------
@@ -157,7 +158,7 @@ class Recorder:
         *,
         rtol: float | None,
         atol: float | None,
-        glue: Glue | None,
+        glue: Glue | recordplan.Extremes | None,
         row: report.RowSpec | Sequence[report.RowSpec] | None,
     ) -> Any:
         """:meth:`value` once its tolerance, glue and rows are known."""
@@ -171,6 +172,11 @@ class Recorder:
         rtol = check_float("rtol", 0.0 if rtol is None else rtol, low=0.0)
         atol = check_float("atol", 0.0 if atol is None else atol, low=0.0)
         entry = {"value": _plain(value), "rtol": rtol, "atol": atol}
+        texts = {}
+        if isinstance(glue, recordplan.Extremes):
+            glue, texts = glue.glue(value)
+            for name in texts:
+                self._check_name(name)
         pasted, glued = {}, {}
         for name, index in ({glue: ()} if isinstance(glue, str) else dict(glue or {})).items():
             item = np.asarray(value)[index]
@@ -190,6 +196,8 @@ class Recorder:
         self.report += rows
         for name, item in pasted.items():
             self.paste(name, item)
+        for name, label in texts.items():
+            self.text(name, label, of=key)
         return value
 
     def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> str | float:

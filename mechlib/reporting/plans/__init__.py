@@ -16,9 +16,9 @@ from __future__ import annotations
 import importlib
 import re
 
-from mechlib.reporting.recordplan import Entry, Plan
+from mechlib.reporting.recordplan import Entry, Extremes, Plan
 
-__all__ = ["Entry", "Plan", "load"]
+__all__ = ["Entry", "Extremes", "Plan", "load"]
 
 
 def load(notebook: str) -> Plan:

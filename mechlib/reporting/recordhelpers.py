@@ -1,0 +1,90 @@
+"""The recorder's shorthands for what the chapters repeat: a mapping of values, glue left out.
+
+:class:`RecordHelpers` is a base of :class:`~mechlib.reporting.records.Recorder`; each helper
+records exactly what the longer code it replaces recorded (the same keys, values and glue).
+The extremes of an array are glued by the plan (:class:`~mechlib.reporting.recordplan.Extremes`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from typing import Any, Protocol
+
+from mechlib.reporting import recordplan
+
+
+class _Recording(Protocol):
+    plan: recordplan.Plan | None
+
+    def value(self, key: str, value: Any, **kwargs: Any) -> Any: ...
+
+    def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> Any: ...
+
+
+class RecordHelpers:
+    """Shorthands over :meth:`Recorder.value` and :meth:`Recorder.text`."""
+
+    def mapping(
+        self: _Recording, prefix: str, values: Mapping[str, Any], **kwargs: Any
+    ) -> Mapping[str, Any]:
+        """Record each ``values[name]`` under ``<prefix>.<name>``, in the mapping's order.
+
+        Parameters
+        ----------
+        prefix : str
+            The keys' common first part (``"geometry"``).
+        values : mapping
+            Names to values.
+        **kwargs
+            Passed to every :meth:`Recorder.value` call (``rtol=`` … without a plan).
+
+        Returns
+        -------
+        mapping
+            ``values``, so that the record can be written inline.
+        """
+        for name, value in values.items():
+            self.value(f"{prefix}.{name}", value, **kwargs)
+        return values
+
+    def skipped(
+        self: _Recording,
+        names: str | Iterable[str],
+        *,
+        why: str,
+        text: str | float = float("nan"),
+        label: str = "none",
+    ) -> None:
+        """Glue what this run does not compute, with the reason: each glue name gets ``text``
+        (NaN by default, for a number) and is marked unchecked with ``why``.
+
+        Parameters
+        ----------
+        names : str or iterable of str
+            Glue names; a key of the plan stands for all its glue names (those of its labels
+            get ``label``).
+        why : str
+            Why the values are not computed (e.g. ``"not computed: nonlinear_runs = 0"``).
+        text : str or float
+            What the prose shows for a number: NaN by default.
+        label : str
+            What the prose shows for a label glued by a planned key.
+
+        Raises
+        ------
+        ValueError
+            An empty ``why``, a glue name already used, or a planned key that glues nothing.
+        """
+        if not why.strip():
+            raise ValueError(f"skipped {names!r}: say why they are not computed (why=)")
+        for name in [names] if isinstance(names, str) else list(names):
+            if self.plan is not None and name in self.plan:
+                numbers, labels = recordplan.glue_names(self.plan[name])
+                if not numbers + labels:
+                    raise ValueError(f"skipped {name!r}: its plan entry glues nothing")
+                for glue in numbers:
+                    self.text(glue, text, why=why)
+                for glue in labels:
+                    self.text(glue, label, why=why)
+            else:
+                self.text(name, text, why=why)
