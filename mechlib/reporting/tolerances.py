@@ -167,6 +167,23 @@ ITERATIVE_ABS = Tolerance(
     atol=1e-12,
     why="as ITERATIVE, for arrays with entries near 0: an absolute floor of 1e-12",
 )
+MONTE_CARLO_RATIO = Tolerance(
+    rtol=2e-6,
+    why="a ratio of two seeded Monte Carlo RMS errors of iterated fits: measured 1e-7 of itself "
+    "apart under another machine's BLAS kernel and SIMD paths; 2e-6 leaves a factor 20",
+)
+SHARE_OF_TRIALS = Tolerance(
+    atol=1e-12,
+    why="a share of paired Monte Carlo trials (a count over the number of trials): one "
+    "division, the same on every machine while no trial's comparison flips; 1e-12 absolute "
+    "allows the division's round-off only",
+)
+CONDITIONING = Tolerance(
+    rtol=1e-6,
+    why="an inverse condition number from an SVD (smallest over largest singular value, columns "
+    "scaled) of a fixed set of poses: its relative round-off, ~1e-16 over the value, stays "
+    "inside 1e-6 for any value above 1e-9",
+)
 
 # --- finite-element solves ---------------------------------------------------------------------
 
