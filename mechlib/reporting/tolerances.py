@@ -185,6 +185,45 @@ CONDITIONING = Tolerance(
     "inside 1e-6 for any value above 1e-9",
 )
 
+BISECTION = Tolerance(
+    atol=1e-6,
+    why="a bisection stopped at an interval of 1e-5 (the numeric MIW, in m): its steps are "
+    "comparisons of round-off-exact kinematics, so a re-run repeats them; 1e-6 absolute allows "
+    "a comparison that flips at round-off",
+)
+SOLVERS_AGREE = Tolerance(
+    atol=1e-8,
+    why="the largest difference between two solvers' solutions of one least-squares problem "
+    "(Gauss–Newton stopped at 1e-12 steps, Levenberg–Marquardt at 1e-14 tolerances): "
+    "round-off-level, bounded absolutely at 1e-8, far below the measurement noise",
+)
+IDENTIFIED = Tolerance(
+    atol=1e-9,
+    why="parameters identified by Gauss–Newton iterations stopped at 1e-12 steps (m, rad, "
+    "gain): another kernel stops at the same solution to far below 1e-9, and far below the "
+    "noise of the measurements they are fitted to",
+)
+
+
+def grid_share(points: int) -> Tolerance:
+    """The tolerance of a share of a deterministic ``points`` × ``points`` grid (a region's
+    area share): only points within round-off of a boundary can flip, ``1 / points²`` each;
+    ten of them are allowed.
+
+    Raises
+    ------
+    ValueError
+        ``points`` not an integer ≥ 1.
+    """
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 1:
+        raise ValueError(f"grid_share: points must be an integer >= 1, got {points!r}")
+    return Tolerance(
+        atol=10 / points**2,
+        why="a share of a deterministic square grid's points: only points within round-off "
+        "of a boundary can flip between machines, 1 / points² each; ten are allowed",
+    )
+
+
 # --- finite-element solves ---------------------------------------------------------------------
 
 FE_PCT = Tolerance(
