@@ -162,6 +162,7 @@ def test_the_recorder_imports_no_science() -> None:
         "mechlib.reporting.report",
         "mechlib.reporting.categories",
         "mechlib.reporting.jsonready",
+        "mechlib.reporting.recordglue",
         "mechlib.reporting.recordhelpers",
         "mechlib.reporting.recordplan",
         "mechlib.reporting.tolerances",

@@ -4,26 +4,44 @@ A plan is a mapping ``{key: Entry}`` kept beside the chapters (:mod:`mechlib.rep
 and handed to the :class:`~mechlib.reporting.records.Recorder`: the notebook then records a key
 with its value alone, ``rec.value(key, value)``, and the recorder takes the rest from the plan.
 :func:`resolve` reads one entry for one value; :func:`unrecorded` lists what a run left out.
+
+The plan's functions read the recorded value: ``rows(context)`` and ``tol(context)`` find it in
+the context under ``"value"`` (beside the names the notebook passes as ``context=``); glue and
+text functions take ``(value)`` or ``(value, context)``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, NamedTuple
 
-import numpy as np
-
-from mechlib.reporting import report
+from mechlib.reporting import recordglue, report
+from mechlib.reporting.recordglue import Extremes, GlueSpec, Index
 from mechlib.reporting.tolerances import Tolerance
+
+__all__ = ["Entry", "Extremes", "Plan", "check_plan", "glue_names", "resolve", "unrecorded"]
 
 #: report rows whose text needs values the notebook computes: ``rows(context)``
 RowsOf = Callable[[Mapping[str, Any]], Sequence[report.RowSpec]]
 #: a tolerance that needs values the notebook computes: ``tol(context)``
 TolOf = Callable[[Mapping[str, Any]], Tolerance]
+#: a text glued from the recorded value: ``text(value)`` or ``text(value, context)``
+TextOf = Callable[..., str | float]
 #: glue as :class:`~mechlib.reporting.records.Recorder` takes it: a name, or ``{name: index}``
-PlanGlue = str | Mapping[str, int | tuple[int, ...]]
+PlanGlue = str | Mapping[str, Index]
+#: the name under which plan functions find the recorded value in the context
+VALUE = "value"
 _ROW_TYPES = (report.Comparison, report.Check, report.Computed, report.NotReproduced)
+
+
+class _NoValue:
+    def __repr__(self) -> str:
+        return "no value"
+
+
+#: :attr:`Entry.value` of an entry that is not a constant
+NO_VALUE: Any = _NoValue()
 
 
 @dataclass(frozen=True)
@@ -34,25 +52,37 @@ class Entry:
     ----------
     tol : Tolerance or callable
         Its named tolerance (:mod:`mechlib.reporting.tolerances`), or ``tol(context)`` giving one.
-    glue : str, mapping or Extremes, optional
-        Glue name of a scalar, ``{name: index}`` for elements of an array, or
-        :class:`Extremes` for its smallest and largest elements (and their labels).
+    glue : str, mapping, Extremes, callable, or a tuple of them, optional
+        Glue name of a scalar, ``{name: index}`` for elements of an array, :class:`Extremes`
+        for its smallest and largest elements (and their labels), or ``glue(value)`` /
+        ``glue(value, context)`` giving ``{name: index}``; a tuple of these is merged
+        (:mod:`mechlib.reporting.recordglue`).
     rows : RowSpec, sequence of RowSpec, or callable
-        Its report rows, or ``rows(context)`` giving them when their text quotes values the
-        notebook computes (the notebook passes those as ``context=``).
+        Its report rows, or ``rows(context)`` giving them when their text quotes the recorded
+        value (``context["value"]``) or values the notebook computes (passed as ``context=``).
     optional : bool
         The key may be left out of a run (a parameter can switch its computation off).
+    texts : mapping of str to callable
+        Texts glued from the recorded value, each ``text(value)`` or ``text(value, context)``
+        giving a str (or NaN), glued as made of the key (``rec.text(name, text, of=key)``).
+    value : any, optional
+        A constant fixed when the plan is written (a published number, a bound): recorded by
+        :meth:`~mechlib.reporting.records.Recorder.constants`.
 
     Raises
     ------
     TypeError
-        A ``tol`` that is neither a Tolerance nor callable, or rows of another kind.
+        A ``tol`` that is neither a Tolerance nor callable, rows, glue or texts of another kind.
+    ValueError
+        A glue name given twice.
     """
 
     tol: Tolerance | TolOf
-    glue: PlanGlue | Extremes | None = None
+    glue: GlueSpec | None = None
     rows: report.RowSpec | Sequence[report.RowSpec] | RowsOf = ()
     optional: bool = False
+    texts: Mapping[str, TextOf] = field(default_factory=dict)
+    value: Any = NO_VALUE
 
     def __post_init__(self) -> None:
         if not isinstance(self.tol, Tolerance) and not callable(self.tol):
@@ -64,98 +94,62 @@ class Entry:
             if not all(isinstance(r, _ROW_TYPES) for r in rows):
                 raise TypeError(f"Entry rows must be report rows or rows(context), got {rows!r}")
             object.__setattr__(self, "rows", rows)
+        for name, text in self.texts.items():
+            if not isinstance(name, str) or not name or not callable(text):
+                raise TypeError(f"Entry texts map glue names to text(value[, context]): {name!r}")
+            recordglue.takes_context(text)
+        numbers, labels = recordglue.names(recordglue.specs(self.glue))
+        twice = sorted(set(numbers + labels) & set(self.texts))
+        if twice:
+            raise ValueError(f"Entry glue names {twice} twice (in glue and in texts)")
+
+    @property
+    def is_constant(self) -> bool:
+        """Whether the entry holds its value (:meth:`Recorder.constants` records it)."""
+        return self.value is not NO_VALUE
 
     @property
     def needs_context(self) -> bool:
-        """Whether the tolerance or the rows are computed from the notebook's context."""
-        return callable(self.rows) or not isinstance(self.tol, Tolerance)
-
-
-@dataclass(frozen=True)
-class Extremes:
-    """Glue for the smallest and largest elements of a recorded array, and their labels.
-
-    Where a notebook wrote ``glue={"lo": int(a.argmin()), "hi": int(a.argmax())}`` and
-    ``rec.text("lo_component", R[int(a.argmin())], of=key)``, its plan writes
-    ``glue=Extremes(low="lo", high="hi", labels=R, low_label="lo_component")``: the same glue
-    entries, indices and texts.
-
-    Parameters
-    ----------
-    low, high : str, optional
-        Glue names of the smallest and the largest element (first one on ties, as ``argmin``).
-    labels : sequence of str
-        The elements' labels (a 1-D value), for ``low_label`` and ``high_label``.
-    low_label, high_label : str, optional
-        Glue names of the labels of the smallest and the largest element (texts made of the key).
-    fixed : mapping of str to index
-        Further glue names of elements at fixed indices, as ``glue={name: index}``.
-
-    Raises
-    ------
-    ValueError
-        No glue name at all, one named twice, or a label glue without labels.
-    """
-
-    low: str | None = None
-    high: str | None = None
-    labels: Sequence[str] = ()
-    low_label: str | None = None
-    high_label: str | None = None
-    fixed: Mapping[str, int | tuple[int, ...]] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        if not (self.low or self.high or self.low_label or self.high_label):
-            raise ValueError("Extremes glues nothing: give low, high, low_label or high_label")
-        names = [self.low, self.high, self.low_label, self.high_label, *self.fixed]
-        names = [n for n in names if n]
-        if len(set(names)) != len(names):
-            raise ValueError(f"Extremes names a glue twice: {names}")
-        if (self.low_label or self.high_label) and not self.labels:
-            raise ValueError(f"Extremes {self.low_label or self.high_label!r} needs labels=")
-
-    def glue(self, value: Any) -> tuple[dict[str, int | tuple[int, ...]], dict[str, str]]:
-        """The glue ``{name: index}`` of ``value``'s extremes and the ``{name: label}`` texts.
-
-        Raises
-        ------
-        ValueError
-            Labels that are not one per element of a 1-D value.
-        """
-        array = np.asarray(value)
-        if self.labels and (array.ndim != 1 or len(self.labels) != array.size):
-            raise ValueError(
-                f"Extremes: {len(self.labels)} labels for a value of shape {array.shape}"
-            )
-        where = {"low": array.argmin(), "high": array.argmax()}
-        at = {
-            side: int(i)
-            if array.ndim == 1
-            else tuple(int(j) for j in np.unravel_index(i, array.shape))
-            for side, i in where.items()
-        }
-        indices = dict(self.fixed) | {
-            name: at[side] for side, name in (("low", self.low), ("high", self.high)) if name
-        }
-        texts = {
-            name: str(self.labels[at[side]])
-            for side, name in (("low", self.low_label), ("high", self.high_label))
-            if name
-        }
-        return indices, texts
+        """Whether the tolerance, rows, glue or texts are computed from a context."""
+        functions = [
+            s for s in recordglue.specs(self.glue) if not isinstance(s, (str, Mapping, Extremes))
+        ]
+        return (
+            callable(self.rows)
+            or not isinstance(self.tol, Tolerance)
+            or any(recordglue.takes_context(f) for f in [*functions, *self.texts.values()])
+        )
 
 
 #: a chapter's plan: every record key it writes
 Plan = Mapping[str, Entry]
 
 
+class Resolved(NamedTuple):
+    """What a plan entry gives one recorded value."""
+
+    tol: Tolerance
+    glue: dict[str, Index]
+    texts: dict[str, str | float]
+    rows: list[report.RowSpec]
+
+
 def glue_names(entry: Entry) -> tuple[list[str], list[str]]:
-    """The glue names of an entry: those of numbers, and those of labels (texts)."""
-    glue = entry.glue
-    if isinstance(glue, Extremes):
-        numbers = [n for n in (glue.low, glue.high, *glue.fixed) if n]
-        return numbers, [n for n in (glue.low_label, glue.high_label) if n]
-    return ([glue] if isinstance(glue, str) else list(glue or {})), []
+    """The glue names of an entry: those of numbers, and those of labels and texts.
+
+    Raises
+    ------
+    ValueError
+        An entry glued by a function: its names are known only from the value.
+    """
+    glue = recordglue.specs(entry.glue)
+    if any(not isinstance(s, (str, Mapping, Extremes)) for s in glue):
+        raise ValueError(
+            "its plan entry glues by a function, whose names are known only from the value: "
+            "name the glue names instead"
+        )
+    numbers, labels = recordglue.names(glue)
+    return numbers, labels + list(entry.texts)
 
 
 def check_plan(plan: Plan, notebook: str) -> None:
@@ -174,15 +168,15 @@ def check_plan(plan: Plan, notebook: str) -> None:
 
 
 def resolve(
-    plan: Plan, key: str, context: Mapping[str, Any] | None, notebook: str
-) -> tuple[Tolerance, PlanGlue | Extremes | None, list[report.RowSpec]]:
-    """The tolerance, glue and report rows the plan gives ``key`` in this ``context``.
+    plan: Plan, key: str, value: Any, context: Mapping[str, Any] | None, notebook: str
+) -> Resolved:
+    """The tolerance, glue, texts and report rows the plan gives ``value`` under ``key``.
 
     Raises
     ------
     ValueError
-        A key the plan does not hold, a context missing where the entry needs one (or given
-        where it needs none), or a context missing a name the entry reads.
+        A key the plan does not hold, a context given where the entry reads none (or holding
+        ``"value"``), or a name the entry reads that the context does not hold.
     """
     if key not in plan:
         raise ValueError(
@@ -190,24 +184,34 @@ def resolve(
             f"{notebook}): add its Entry there"
         )
     entry = plan[key]
-    if entry.needs_context and context is None:
-        raise ValueError(
-            f"{key}: its plan entry builds its rows or tolerance from values of the notebook: "
-            f"pass them as context={{...}}"
-        )
     if context is not None and not entry.needs_context:
         raise ValueError(f"{key}: its plan entry reads no context, got context={sorted(context)}")
-    try:
-        tol = entry.tol if isinstance(entry.tol, Tolerance) else entry.tol(context or {})
-        rows = list(entry.rows(context or {}) if callable(entry.rows) else entry.rows)
-    except KeyError as missing:
+    if context is not None and VALUE in context:
         raise ValueError(
-            f"{key}: its plan entry reads {missing} from the context, which holds "
-            f"{sorted(context or {})}"
+            f"{key}: context={sorted(context)} may not hold {VALUE!r}: the recorder puts the "
+            f"recorded value there"
+        )
+    full = {**(context or {}), VALUE: value}
+    try:
+        tol = entry.tol if isinstance(entry.tol, Tolerance) else entry.tol(full)
+        rows = list(entry.rows(full) if callable(entry.rows) else entry.rows)
+        glue, labels = recordglue.resolve(recordglue.specs(entry.glue), value, full)
+        texts = labels | {name: recordglue.call(f, value, full) for name, f in entry.texts.items()}
+    except KeyError as error:
+        missing = error.args[0] if error.args else None
+        if not isinstance(missing, str) or missing in full:
+            raise
+        hint = "" if context else ": pass them as context={...}"
+        raise ValueError(
+            f"{key}: its plan entry reads {missing!r} from the context, which holds "
+            f"{sorted(context or {})}{hint}"
         ) from None
     if not isinstance(tol, Tolerance):
         raise TypeError(f"{key}: the plan's tol(context) must give a Tolerance, got {tol!r}")
-    return tol, entry.glue, rows
+    twice = sorted(set(glue) & set(texts))
+    if twice:
+        raise ValueError(f"{key}: its plan glues {twice} twice")
+    return Resolved(tol, glue, texts, rows)
 
 
 def unrecorded(plan: Plan, recorded: set[str]) -> list[str]:

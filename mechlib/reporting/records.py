@@ -145,11 +145,12 @@ class Recorder(RecordHelpers):
                     f"{key}: {self.notebook} records by its plan, which gives the tolerance, "
                     f"glue and rows: drop {', '.join(given)}= here"
                 )
-            tol, glue, row = recordplan.resolve(self.plan, key, context, self.notebook)
-            rtol, atol = tol.rtol, tol.atol_for(value)
+            got = recordplan.resolve(self.plan, key, value, context, self.notebook)
+            rtol, atol, glue, row = got.tol.rtol, got.tol.atol_for(value), got.glue, got.rows
         elif context is not None:
             raise ValueError(f"{key}: context= is read by a plan; {self.notebook} has none")
-        return self._record(key, value, rtol=rtol, atol=atol, glue=glue, row=row)
+        texts = got.texts if self.plan is not None else None
+        return self._record(key, value, rtol=rtol, atol=atol, glue=glue, row=row, texts=texts)
 
     def _record(
         self,
@@ -158,10 +159,11 @@ class Recorder(RecordHelpers):
         *,
         rtol: float | None,
         atol: float | None,
-        glue: Glue | recordplan.Extremes | None,
+        glue: Glue | None,
         row: report.RowSpec | Sequence[report.RowSpec] | None,
+        texts: Mapping[str, str | float] | None = None,
     ) -> Any:
-        """:meth:`value` once its tolerance, glue and rows are known."""
+        """:meth:`value` once its tolerance, glue, rows and texts (made of it) are known."""
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
@@ -172,11 +174,8 @@ class Recorder(RecordHelpers):
         rtol = check_float("rtol", 0.0 if rtol is None else rtol, low=0.0)
         atol = check_float("atol", 0.0 if atol is None else atol, low=0.0)
         entry = {"value": _plain(value), "rtol": rtol, "atol": atol}
-        texts = {}
-        if isinstance(glue, recordplan.Extremes):
-            glue, texts = glue.glue(value)
-            for name in texts:
-                self._check_name(name)
+        for name, text in (texts or {}).items():
+            self._check_text(name, text)
         pasted, glued = {}, {}
         for name, index in ({glue: ()} if isinstance(glue, str) else dict(glue or {})).items():
             item = np.asarray(value)[index]
@@ -196,8 +195,8 @@ class Recorder(RecordHelpers):
         self.report += rows
         for name, item in pasted.items():
             self.paste(name, item)
-        for name, label in texts.items():
-            self.text(name, label, of=key)
+        for name, text in (texts or {}).items():
+            self.text(name, text, of=key)
         return value
 
     def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> str | float:
@@ -220,17 +219,20 @@ class Recorder(RecordHelpers):
             A glue name used twice, neither or both of ``of`` and ``why``, an ``of`` key not
             recorded, or a finite number (numbers go through :meth:`value`).
         """
-        if not isinstance(text, str) and not (isinstance(text, float) and np.isnan(text)):
-            raise ValueError(f"text {name!r} must be a str or NaN, got {text!r} (numbers: value)")
+        self._check_text(name, text)
         if bool(of) == bool(why):
             raise ValueError(f"text {name!r}: say what it is made of (of=) or why not (why=)")
         missing = [k.strip() for k in of.split(",") if of and k.strip() not in self.values]
         if missing:
             raise ValueError(f"text {name!r} is made of {missing}, which were not recorded")
-        self._check_name(name)
         self.glued[name] = {"text_of": of} if of else {"unchecked": why}
         self.paste(name, text)
         return text
+
+    def _check_text(self, name: str, text: Any) -> None:
+        if not isinstance(text, str) and not (isinstance(text, float) and np.isnan(text)):
+            raise ValueError(f"text {name!r} must be a str or NaN, got {text!r} (numbers: value)")
+        self._check_name(name)
 
     def _check_name(self, name: str) -> None:
         if not name or name in self.glued:

@@ -1,0 +1,149 @@
+"""Glue specs of a record plan that read the recorded value (and the notebook's context): each
+records what the hand-written glue it replaces recorded."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from mechlib.reporting import plans
+from mechlib.reporting.records import Recorder, load
+from mechlib.reporting.tolerances import ROUNDOFF
+
+
+def same(tmp_path: Path, literal: Recorder, planned: Recorder) -> dict[str, Any]:
+    one = load(literal.save(tmp_path / "literal"))
+    two = load(planned.save(tmp_path / "plan"))
+    assert one == two
+    return two
+
+
+def recorder(plan: dict[str, plans.Entry] | None = None) -> tuple[Recorder, dict[str, Any]]:
+    pasted: dict[str, Any] = {}
+    return Recorder("demo", paste=pasted.__setitem__, plan=plan), pasted
+
+
+def test_glue_of_the_value_stores_the_indices_written_by_hand(tmp_path: Path) -> None:
+    worst = np.array([4.0, 2.0, 9.0, 1.5, 3.0, 8.0, 6.0, 7.0])
+    literal, by_hand = recorder()
+    literal.value(
+        "w.worst",
+        worst,
+        rtol=1e-9,
+        glue={"worst_best": int(worst.argmin()), "worst_rom": len(worst) - 1, "first": 0},
+    )
+    plan = {
+        "w.worst": plans.Entry(
+            tol=ROUNDOFF,
+            glue=lambda v: {"worst_best": v.argmin(), "worst_rom": -1, "first": 0},
+        )
+    }
+    rec, pasted = recorder(plan)
+    rec.value("w.worst", worst)
+    stored = same(tmp_path, literal, rec)
+    assert stored["glue"]["worst_rom"] == {"key": "w.worst", "index": 7}  # -1 as numpy reads it
+    assert stored["glue"]["worst_best"] == {"key": "w.worst", "index": 3}
+    assert pasted == by_hand == {"worst_best": 1.5, "worst_rom": 7.0, "first": 4.0}
+
+
+def test_a_fixed_negative_index_is_stored_as_written(tmp_path: Path) -> None:
+    literal, _ = recorder()
+    literal.value("n.runs", [10, 20, 40], atol=0, glue={"n_max": -1})
+    rec, _ = recorder({"n.runs": plans.Entry(tol=ROUNDOFF, glue={"n_max": -1})})
+    rec.value("n.runs", [10, 20, 40])
+    assert rec.glued["n_max"] == {"key": "n.runs", "index": -1}  # as the records hold today
+    assert rec.glued == literal.glued
+
+
+def test_glue_of_the_value_and_the_context(tmp_path: Path) -> None:
+    exponent = np.arange(12.0).reshape(4, 3)
+    worst = 2
+    literal, _ = recorder()
+    literal.value(
+        "s.exponent",
+        exponent,
+        rtol=1e-9,
+        glue={"p_first": (0, worst), "p_last": (len(exponent) - 1, worst)},
+    )
+    glue = lambda v, c: {"p_first": (0, c["worst"]), "p_last": (-1, c["worst"])}  # noqa: E731
+    rec, _ = recorder({"s.exponent": plans.Entry(tol=ROUNDOFF, glue=glue)})
+    with pytest.raises(ValueError, match=r"reads 'worst' from the context.*pass them as context="):
+        rec.value("s.exponent", exponent)
+    rec.value("s.exponent", exponent, context={"worst": worst})
+    stored = same(tmp_path, literal, rec)
+    assert stored["glue"]["p_last"] == {"key": "s.exponent", "index": [3, 2]}
+
+
+def test_a_glue_function_may_glue_nothing() -> None:
+    plan = {
+        "m.change": plans.Entry(
+            tol=ROUNDOFF,
+            glue=lambda v, c: {"mesh_change": c["n"] - 1} if c["n"] else {},
+        )
+    }
+    rec, pasted = recorder(plan)
+    rec.value("m.change", np.zeros(0), context={"n": 0})
+    assert rec.glued == {} and pasted == {}
+
+
+def test_extremes_within_a_row_as_argmax_of_that_row(tmp_path: Path) -> None:
+    dep = np.array([[1.0, 5.0, 2.0], [7.0, 0.0, 3.0], [2.0, 2.0, 2.0], [4.0, 9.0, -1.0]])
+    R = ["x", "y", "z"]
+    literal, by_hand = recorder()
+    literal.value(
+        "d.dep",
+        dep,
+        rtol=1e-9,
+        glue={
+            "dep_pub_t2": (0, int(dep[0].argmax())),
+            "dep_nl_min": (3, int(dep[3].argmin())),
+            "dep_nl": (3, int(dep[3].argmax())),
+            "dep_x0": (0, 0),
+        },
+    )
+    literal.text("dep_nl_component", R[int(dep[3].argmax())], of="d.dep")
+    glue = (
+        plans.Extremes(row=0, high="dep_pub_t2"),
+        plans.Extremes(
+            row=-1, low="dep_nl_min", high="dep_nl", labels=R, high_label="dep_nl_component"
+        ),
+        {"dep_x0": (0, 0)},
+    )
+    rec, pasted = recorder({"d.dep": plans.Entry(tol=ROUNDOFF, glue=glue)})
+    rec.value("d.dep", dep)
+    stored = same(tmp_path, literal, rec)
+    assert stored["glue"]["dep_nl"] == {"key": "d.dep", "index": [3, 1]}
+    assert pasted == by_hand and pasted["dep_nl_component"] == "y"
+
+
+def test_glue_specs_naming_a_glue_twice_are_refused() -> None:
+    with pytest.raises(ValueError, match=r"names \['a'\] twice"):
+        plans.Entry(tol=ROUNDOFF, glue=("a", plans.Extremes(high="a")))
+    plan = {"t.v": plans.Entry(tol=ROUNDOFF, glue=(plans.Extremes(high="a"), lambda v: {"a": 0}))}
+    rec, _ = recorder(plan)
+    with pytest.raises(ValueError, match=r"names \['a'\] twice"):
+        rec.value("t.v", [1.0, 2.0])
+    assert rec.values == {}
+
+
+def test_glue_specs_that_cannot_glue_are_refused() -> None:
+    with pytest.raises(TypeError, match="takes 3 required arguments"):
+        plans.Entry(tol=ROUNDOFF, glue=lambda v, c, d: {})
+    with pytest.raises(TypeError, match="plan glue must be"):
+        plans.Entry(tol=ROUNDOFF, glue=(3,))  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="row must be an integer"):
+        plans.Extremes(high="a", row=1.0)  # type: ignore[arg-type]
+    rec, _ = recorder(
+        {
+            "t.far": plans.Entry(tol=ROUNDOFF, glue=lambda v: {"far": 3}),
+            "t.row": plans.Entry(tol=ROUNDOFF, glue=plans.Extremes(high="hi", row=2)),
+        }
+    )
+    with pytest.raises(ValueError, match=r"index 3 outside a value of shape \(3,\)"):
+        rec.value("t.far", [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"row=2 of a value of shape \(2, 2\)"):
+        rec.value("t.row", np.eye(2))
+    assert rec.values == {}
