@@ -11,7 +11,7 @@ import pytest
 
 from mechlib.reporting import plans
 from mechlib.reporting.records import Recorder, load
-from mechlib.reporting.tolerances import ROUNDOFF
+from mechlib.reporting.tolerances import EXACT, ROUNDOFF
 
 
 def same(tmp_path: Path, literal: Recorder, planned: Recorder) -> dict[str, Any]:
@@ -147,3 +147,62 @@ def test_glue_specs_that_cannot_glue_are_refused() -> None:
     with pytest.raises(ValueError, match=r"row=2 of a value of shape \(2, 2\)"):
         rec.value("t.row", np.eye(2))
     assert rec.values == {}
+
+
+def test_texts_from_the_plan_are_glued_as_made_of_the_key(tmp_path: Path) -> None:
+    R = np.array(["x", "y", "z"])
+    pct = np.array([[3.0, 1.0, 2.0], [2.0, 4.0, 1.0]])
+    mask = np.array([True, False, True])
+    literal, by_hand = recorder()
+    literal.value("v.range_pct", pct, rtol=1e-9, glue={"worst": (1, 1)})
+    literal.text("better", ", ".join(R[mask]) or "none", of="v.range_pct")
+    literal.text("worse", ", ".join(R[pct[1] > 5]) or "none", of="v.range_pct")
+    literal.value("v.same", True)
+    literal.text("same_dominant", "the same" if True else "not the same", of="v.same")
+    plan = {
+        "v.range_pct": plans.Entry(
+            tol=ROUNDOFF,
+            glue={"worst": (1, 1)},
+            texts={
+                "better": lambda v, c: ", ".join(R[c["mask"]]) or "none",
+                "worse": lambda v: ", ".join(R[v[1] > 5]) or "none",
+            },
+        ),
+        "v.same": plans.Entry(
+            tol=EXACT, texts={"same_dominant": lambda v: "the same" if v else "not the same"}
+        ),
+    }
+    rec, pasted = recorder(plan)
+    rec.value("v.range_pct", pct, context={"mask": mask})
+    rec.value("v.same", True)
+    stored = same(tmp_path, literal, rec)
+    assert stored["glue"]["better"] == {"text_of": "v.range_pct"}
+    assert pasted == by_hand and pasted["better"] == "x, z" and pasted["worse"] == "none"
+
+
+def test_texts_that_are_not_text_or_name_a_glue_twice_are_refused() -> None:
+    with pytest.raises(ValueError, match=r"names \['a'\] twice"):
+        plans.Entry(tol=EXACT, glue="a", texts={"a": str})
+    with pytest.raises(TypeError, match="texts map glue names"):
+        plans.Entry(tol=EXACT, texts={"a": "not a function"})  # type: ignore[dict-item]
+    plan = {
+        "t.n": plans.Entry(tol=EXACT, texts={"n_text": lambda v: v + 1}),
+        "t.m": plans.Entry(tol=EXACT, glue=lambda v: {"m": ()}, texts={"m": str}),
+    }
+    rec, pasted = recorder(plan)
+    with pytest.raises(ValueError, match=r"text 'n_text' must be a str or NaN, got 4"):
+        rec.value("t.n", 3)
+    with pytest.raises(ValueError, match=r"glues \['m'\] twice"):
+        rec.value("t.m", 3)
+    assert rec.values == {} and rec.glued == {} and pasted == {}
+
+
+def test_skipped_gives_a_planned_keys_texts_the_label() -> None:
+    plan = {"s.v": plans.Entry(tol=EXACT, glue="s_n", texts={"s_list": str}, optional=True)}
+    rec, pasted = recorder(plan)
+    rec.skipped("s.v", why="not computed: no runs")
+    assert pasted["s_list"] == "none" and np.isnan(pasted["s_n"])
+    assert rec.glued["s_list"] == {"unchecked": "not computed: no runs"}
+    rec2, _ = recorder({"f.v": plans.Entry(tol=EXACT, glue=lambda v: {}, optional=True)})
+    with pytest.raises(ValueError, match=r"skipped 'f\.v': its plan entry glues by a function"):
+        rec2.skipped("f.v", why="not computed")

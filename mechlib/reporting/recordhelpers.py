@@ -62,7 +62,7 @@ class RecordHelpers:
         ----------
         names : str or iterable of str
             Glue names; a key of the plan stands for all its glue names (those of its labels
-            get ``label``).
+            and texts get ``label``; a key glued by a function is refused: name its glue).
         why : str
             Why the values are not computed (e.g. ``"not computed: nonlinear_runs = 0"``).
         text : str or float
@@ -79,7 +79,10 @@ class RecordHelpers:
             raise ValueError(f"skipped {names!r}: say why they are not computed (why=)")
         for name in [names] if isinstance(names, str) else list(names):
             if self.plan is not None and name in self.plan:
-                numbers, labels = recordplan.glue_names(self.plan[name])
+                try:
+                    numbers, labels = recordplan.glue_names(self.plan[name])
+                except ValueError as error:
+                    raise ValueError(f"skipped {name!r}: {error}") from None
                 if not numbers + labels:
                     raise ValueError(f"skipped {name!r}: its plan entry glues nothing")
                 for glue in numbers:
