@@ -9,9 +9,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from mechlib.reporting import plans
+from mechlib.reporting import plans, report
 from mechlib.reporting.records import Recorder, load
-from mechlib.reporting.tolerances import EXACT, ROUNDOFF
+from mechlib.reporting.tolerances import EXACT, ROUNDOFF, Tolerance
 
 
 def same(tmp_path: Path, literal: Recorder, planned: Recorder) -> dict[str, Any]:
@@ -206,3 +206,50 @@ def test_skipped_gives_a_planned_keys_texts_the_label() -> None:
     rec2, _ = recorder({"f.v": plans.Entry(tol=EXACT, glue=lambda v: {}, optional=True)})
     with pytest.raises(ValueError, match=r"skipped 'f\.v': its plan entry glues by a function"):
         rec2.skipped("f.v", why="not computed")
+
+
+def test_rows_and_tolerance_read_the_value_from_the_context(tmp_path: Path) -> None:
+    rmse = np.array([[0.5, 2.0], [1.5, 0.25]])
+    literal, _ = recorder()
+    literal.value(
+        "t5.same",
+        False,
+        row=report.Check("Table 3", "same dominant", "equal: no", basis="construction"),
+    )
+    literal.value(
+        "t5.rmse",
+        rmse,
+        rtol=1e-6,
+        atol=1e-6 * float(np.abs(rmse).max()) + 1e-3,
+        row=report.NotReproduced("Table 5", "worst RMSE", 1.0, f"tried: {rmse.max(axis=0)}"),
+    )
+    plan = {
+        "t5.same": plans.Entry(
+            tol=EXACT,
+            rows=lambda c: [
+                report.Check(
+                    "Table 3",
+                    "same dominant",
+                    f"equal: {'yes' if c['value'] else 'no'}",
+                    basis="construction",
+                )
+            ],
+        ),
+        "t5.rmse": plans.Entry(
+            tol=lambda c: Tolerance(
+                rtol=1e-6, atol=1e-6 * float(np.abs(c["value"]).max()) + c["floor"], why="test"
+            ),
+            rows=lambda c: [
+                report.NotReproduced(
+                    "Table 5", "worst RMSE", 1.0, f"tried: {c['value'].max(axis=0)}"
+                )
+            ],
+        ),
+    }
+    rec, _ = recorder(plan)
+    rec.value("t5.same", False)  # reads the value alone: no context needed
+    with pytest.raises(ValueError, match="may not hold 'value'"):
+        rec.value("t5.rmse", rmse, context={"value": rmse, "floor": 1e-3})
+    rec.value("t5.rmse", rmse, context={"floor": 1e-3})
+    stored = same(tmp_path, literal, rec)
+    assert stored["report"][0]["ours"] == "equal: no"

@@ -122,8 +122,8 @@ class Recorder(RecordHelpers):
         row : report.Comparison, report.Check, report.Computed or report.NotReproduced, or a list
             Report rows completed with this value (see :mod:`mechlib.reporting.report`).
         context : dict, optional
-            With a plan: the notebook's values that the key's plan entry builds its rows (or
-            tolerance) from, by name.
+            With a plan: the notebook's values its entry's functions read, by name (they find
+            the recorded value itself under ``"value"``: :mod:`~mechlib.reporting.recordplan`).
 
         Returns
         -------
