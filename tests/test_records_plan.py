@@ -201,3 +201,25 @@ def test_skipped_glue_nan_with_the_reason_as_the_loop_it_replaces() -> None:
         rec.skipped("q.empty", why="x")
     with pytest.raises(ValueError, match="say why"):
         rec.skipped("other", why=" ")
+
+
+def test_a_tolerance_scaled_by_a_reference_is_the_float_written_by_hand(tmp_path: Path) -> None:
+    eff = np.array([[0.3, -7.25], [1e-9, 2.0]])
+    value = np.array([1e-3, 4.0])
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.value("s.me", value, rtol=1e-6, atol=1e-6 * np.abs(eff).max())
+    literal.value("s.pose", eff, rtol=2e-3, atol=1e-6 * np.abs(eff).max())
+    peaked = Tolerance(rtol=1e-6, peak=1e-6, why="round-off of the largest effect")
+    plan = {
+        "s.me": plans.Entry(tol=lambda c: peaked.scaled(c["eff"])),
+        "s.pose": plans.Entry(tol=Tolerance(rtol=2e-3, peak=1e-6, why="of the largest entry")),
+    }
+    rec = Recorder("demo", paste=lambda name, value: None, plan=plan)
+    rec.value("s.me", value, context={"eff": eff})
+    rec.value("s.pose", eff)
+    assert load(literal.save(tmp_path / "a")) == load(rec.save(tmp_path / "b"))
+    scaled = peaked.scaled(eff)
+    assert (scaled.atol, scaled.peak, scaled.why) == (7.25e-6, 0.0, peaked.why)
+    assert ROUNDOFF.scaled(eff) is ROUNDOFF  # no peak: nothing to scale
+    with pytest.raises(ValueError, match="reference must be finite numbers"):
+        peaked.scaled([np.nan])

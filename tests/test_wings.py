@@ -165,6 +165,7 @@ def test_the_recorder_imports_no_science() -> None:
         "mechlib.reporting.recordglue",
         "mechlib.reporting.recordhelpers",
         "mechlib.reporting.recordplan",
+        "mechlib.reporting.tolerance",
         "mechlib.reporting.tolerances",
         "mechlib.params",
         "mechlib.paths",

@@ -18,7 +18,7 @@ from typing import Any, NamedTuple
 
 from mechlib.reporting import recordglue, report
 from mechlib.reporting.recordglue import Extremes, GlueSpec, Index
-from mechlib.reporting.tolerances import Tolerance
+from mechlib.reporting.tolerance import Tolerance
 
 __all__ = ["Entry", "Extremes", "Plan", "check_plan", "glue_names", "resolve", "unrecorded"]
 

@@ -11,57 +11,9 @@ The numbers are the ones the chapters used as literals: changing one changes the
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-from typing import Any
-
 import numpy as np
 
-
-@dataclass(frozen=True)
-class Tolerance:
-    """How closely a re-run must reproduce a recorded value.
-
-    Parameters
-    ----------
-    rtol : float
-        Relative tolerance, ≥ 0.
-    atol : float
-        Absolute tolerance, ≥ 0, in the value's units.
-    why : str
-        One sentence: the numerics behind the value and why a re-run stays within the bounds.
-    peak : float
-        A further absolute tolerance as a fraction of the recorded value's largest magnitude
-        (for arrays whose round-off scales with their largest entry), ≥ 0.
-
-    Raises
-    ------
-    ValueError
-        A negative or non-finite bound, or an empty ``why``.
-    """
-
-    rtol: float = 0.0
-    atol: float = 0.0
-    why: str = ""
-    peak: float = 0.0
-
-    def __post_init__(self) -> None:
-        for name in ("rtol", "atol", "peak"):
-            bound = getattr(self, name)
-            if isinstance(bound, bool) or not isinstance(bound, (int, float)):
-                raise ValueError(f"Tolerance {name} must be a number >= 0, got {bound!r}")
-            if not math.isfinite(bound) or bound < 0:
-                raise ValueError(f"Tolerance {name} must be finite and >= 0, got {bound!r}")
-        if not self.why.strip():
-            raise ValueError("a Tolerance says why a re-run stays within it: why= is empty")
-
-    def atol_for(self, value: Any) -> float:
-        """The absolute tolerance of ``value``: ``atol`` plus ``peak`` times its largest
-        magnitude (just ``atol`` when ``peak`` is 0)."""
-        if not self.peak:
-            return self.atol
-        return self.atol + self.peak * np.abs(np.asarray(value, dtype=float)).max()
-
+from mechlib.reporting.tolerance import Tolerance
 
 # --- exact -------------------------------------------------------------------------------------
 
