@@ -67,6 +67,7 @@ def test_find_section_prefers_most_artefacts_then_words_then_none() -> None:
         "# round-off of printed sums\nROUNDOFF = 1e-9\nrec.value('e', e, rtol=ROUNDOFF)",
         'rec.value("a", a)\nrec.value("b", ok, context={"span_text": span_text});',
         'rec.mapping("geometry", geometry.as_dict())\nrec.skipped(["q_dep", "q.v"], why="one run")',
+        "rec.constants()",
     ],
 )
 def test_bookkeeping_cells_are_recognised(source: str) -> None:

@@ -253,3 +253,38 @@ def test_rows_and_tolerance_read_the_value_from_the_context(tmp_path: Path) -> N
     rec.value("t5.rmse", rmse, context={"floor": 1e-3})
     stored = same(tmp_path, literal, rec)
     assert stored["report"][0]["ours"] == "equal: no"
+
+
+def test_constants_are_recorded_as_the_calls_they_replace(tmp_path: Path) -> None:
+    literal, by_hand = recorder()
+    literal.value("pub.width_mm", 12.5, atol=0, glue="pub_width")
+    literal.value("n.levels", 7, atol=0)
+    literal.value(
+        "pub.bound",
+        [0.1, 0.2],
+        rtol=1e-9,
+        glue={"bound_hi": 1},
+        row=report.Comparison("Table 1", "bound", [0.1, 0.2], rtol=0.01),
+    )
+    literal.value("measured", 3.5, rtol=1e-9)
+    plan = {
+        "pub.width_mm": plans.Entry(tol=EXACT, glue="pub_width", value=12.5),
+        "measured": plans.Entry(tol=ROUNDOFF),
+        "n.levels": plans.Entry(tol=EXACT, value=7),
+        "pub.bound": plans.Entry(
+            tol=ROUNDOFF,
+            glue={"bound_hi": 1},
+            rows=report.Comparison("Table 1", "bound", [0.1, 0.2], rtol=0.01),
+            value=[0.1, 0.2],
+        ),
+    }
+    rec, pasted = recorder(plan)
+    assert rec.constants() == {"pub.width_mm": 12.5, "n.levels": 7, "pub.bound": [0.1, 0.2]}
+    assert list(rec.values) == ["pub.width_mm", "n.levels", "pub.bound"]  # the plan's order
+    rec.value("measured", 3.5)
+    same(tmp_path, literal, rec)
+    assert pasted == by_hand
+    with pytest.raises(ValueError, match="no plan"):
+        recorder()[0].constants()
+    with pytest.raises(ValueError, match="no entry with value="):
+        recorder({"m": plans.Entry(tol=EXACT)})[0].constants()

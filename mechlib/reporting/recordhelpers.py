@@ -47,6 +47,30 @@ class RecordHelpers:
             self.value(f"{prefix}.{name}", value, **kwargs)
         return values
 
+    def constants(self: _Recording) -> dict[str, Any]:
+        """Record every constant of the plan (entries with a ``value=``), in the plan's order,
+        each as ``rec.value(key, entry.value)``: the same keys, values, tolerances, glue, texts
+        and rows as those calls.
+
+        Returns
+        -------
+        dict
+            The constants recorded, by key.
+
+        Raises
+        ------
+        ValueError
+            A recorder without a plan, or a plan with no constant.
+        """
+        if self.plan is None:
+            raise ValueError("constants: they are a plan's entries with value=; this has no plan")
+        constants = {key: e.value for key, e in self.plan.items() if e.is_constant}
+        if not constants:
+            raise ValueError("constants: the plan has no entry with value=")
+        for key, value in constants.items():
+            self.value(key, value)
+        return constants
+
     def skipped(
         self: _Recording,
         names: str | Iterable[str],
