@@ -274,38 +274,44 @@ class Recorder(RecordHelpers):
             self.paste(glue, value)
         return value
 
-    def claim(self, claim_id: str) -> str:
-        """Judge the registered claim ``claim_id`` (looked up in ``registry``) from this
-        notebook's records: its verdict word is recorded under ``claims.<claim_id>`` and its
-        report row added. Pages quote the word by id, never compose it.
+    def claim(self, *claim_ids: str) -> str | list[str]:
+        """Judge the registered claims ``claim_ids`` (looked up in ``registry``), in order, from
+        this notebook's records: each verdict word is recorded under ``claims.<claim_id>`` and
+        its report row added, as one call per claim would. Pages quote the word by id.
 
         Returns
         -------
-        str
-            The verdict word ("supported", "not supported", "mixed"; "holds", "does not hold").
+        str or list of str
+            The verdict word ("supported", "not supported", "mixed"; "holds", "does not hold"),
+            or the list of them for several ids.
 
         Raises
         ------
         KeyError
             An id the registry does not hold, or a value its rule reads that was not recorded.
         ValueError
-            A claim whose evidence another notebook records, one judged twice, or a recorder
-            made without a registry.
+            No id, a claim whose evidence another notebook records, one judged twice, or a
+            recorder made without a registry.
         """
-        if self.registry is None:
+        if self.registry is None or not claim_ids:
             raise ValueError(
-                f"claims: {self.notebook}'s Recorder was made without a claims registry; make it "
-                f"as Recorder(name, registry=claimlist.claim) to judge claim {claim_id!r}"
+                f"claims: {self.notebook} judges claims {claim_ids} by id with a registry: make "
+                f"the Recorder as Recorder(name, registry=claimlist.claim), name at least one id"
             )
-        spec = self.registry(claim_id)
-        if spec.page != self.notebook:
-            raise ValueError(f"claim {claim_id!r} is judged on {spec.page}, not on {self.notebook}")
-        verdict = claims.evaluate(spec, {**self.values, **self.timings})
-        # a claim's key is its registry entry's, not the plan's
-        key = f"{CLAIM_PREFIX}{claim_id}"
-        self._record(key, verdict.word, rtol=None, atol=None, glue=None, row=None)
-        self.report.append({k: _plain(v) for k, v in verdict.row().items()})
-        return verdict.word
+        words = []
+        for claim_id in claim_ids:
+            spec = self.registry(claim_id)
+            if spec.page != self.notebook:
+                raise ValueError(
+                    f"claim {claim_id!r} is judged on {spec.page}, not {self.notebook}"
+                )
+            verdict = claims.evaluate(spec, {**self.values, **self.timings})
+            # a claim's key is its registry entry's, not the plan's
+            key = f"{CLAIM_PREFIX}{claim_id}"
+            self._record(key, verdict.word, rtol=None, atol=None, glue=None, row=None)
+            self.report.append({k: _plain(v) for k, v in verdict.row().items()})
+            words.append(verdict.word)
+        return words[0] if len(words) == 1 else words
 
     def add_data(self, name: str, content: Any, *, about: str) -> None:
         """Keep a table or a model for the book's data bundle (not a record: nothing compares it).

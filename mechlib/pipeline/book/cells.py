@@ -14,8 +14,8 @@ rule, what each cell shows:
 * a cell whose every statement is bookkeeping — ``rec.value(...)`` (with or without
   ``context=``), ``rec.text(...)``, ``rec.mapping(...)``, ``rec.skipped(...)``,
   ``rec.constants()``, ``rec.save()``, ``glue(..., display=False)``, prints of what those
-  return, and the named tolerances of the
-  records (assignments to UPPER_CASE names) — is removed (``remove-cell``);
+  return, and the named tolerances of the records (assignments to UPPER_CASE names) — is
+  removed (``remove-cell``);
   its glued values still reach the text;
 * every other code cell is folded (``hide-input``): figures and tables stay visible;
 * outputs lose lines of known library warnings and have absolute machine paths neutralised;
