@@ -7,14 +7,19 @@ The extremes of an array are glued by the plan (:class:`~mechlib.reporting.recor
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+import json
+import re
+from collections.abc import Callable, Iterable, Mapping
 from typing import Any, Protocol
 
 from mechlib.reporting import recordplan
+from mechlib.reporting.jsonready import plain_tree
 
 
 class _Recording(Protocol):
     plan: recordplan.Plan | None
+    data: dict[str, tuple[str, str]]
+    about: Mapping[str, str | Callable[[Mapping[str, Any]], str]]
 
     def value(self, key: str, value: Any, **kwargs: Any) -> Any: ...
 
@@ -115,3 +120,61 @@ class RecordHelpers:
                     self.text(glue, label, why=why)
             else:
                 self.text(name, text, why=why)
+
+    def add_data(
+        self: _Recording,
+        name: str,
+        content: Any,
+        *,
+        about: str | None = None,
+        context: Mapping[str, Any] | None = None,
+    ) -> None:
+        """Keep a table or a model for the book's data bundle (not a record: nothing compares it).
+
+        Parameters
+        ----------
+        name : str
+            File stem, letters, digits and ``_``; unique in this notebook.
+        content : pandas.DataFrame or mapping
+            A table (written as CSV, full precision, headers with their units) or a JSON-ready
+            mapping (written as JSON).
+        about : str, optional
+            One line for the bundle's README: what the file holds, with units. By default the
+            recorder's ``about[name]`` (the plan module's ``DATA``): a str, or ``about(context)``.
+        context : mapping, optional
+            The notebook's values that ``about(context)`` quotes.
+
+        Raises
+        ------
+        ValueError
+            A name used twice or not of that form, an empty ``about``, one given here that the
+            plan gives too (or none from either), a context for a plain ``about``, or content of
+            another kind.
+        """
+        if not re.fullmatch(r"[A-Za-z0-9_]+", name) or name in {
+            f.rsplit(".")[0] for f in self.data
+        }:
+            raise ValueError(f"data name {name!r} is not [A-Za-z0-9_]+ or was already used")
+        planned = self.about.get(name)
+        if (about is None) == (planned is None):
+            where = "both here and in the plan's DATA" if about is not None else "nowhere"
+            raise ValueError(f"data {name!r}: its about= is given {where}: give it once")
+        if context is not None and not callable(planned):
+            raise ValueError(f"data {name!r}: context= is read by an about(context) in DATA only")
+        if callable(planned):
+            try:
+                planned = planned(context or {})
+            except KeyError as missing:
+                raise ValueError(
+                    f"data {name!r}: its about reads {missing} from context={sorted(context or {})}"
+                ) from None
+        about = about if about is not None else planned
+        if not isinstance(about, str) or not about.strip():
+            raise ValueError(f"data {name!r} needs a one-line description (about), got {about!r}")
+        if hasattr(content, "to_csv"):
+            self.data[f"{name}.csv"] = (content.to_csv(index=False, lineterminator="\n"), about)
+        elif isinstance(content, Mapping):
+            text = json.dumps(plain_tree(content), indent=1, ensure_ascii=False) + "\n"
+            self.data[f"{name}.json"] = (text, about)
+        else:
+            raise ValueError(f"data {name!r} must be a DataFrame or a mapping, got {type(content)}")

@@ -11,7 +11,6 @@ check a cold re-run gives the same bytes — is the build wing's (:mod:`mechlib.
 from __future__ import annotations
 
 import json
-import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -25,7 +24,6 @@ from mechlib.paths import records_dir
 from mechlib.reporting import claims, recordplan, report
 from mechlib.reporting.jsonready import is_number as _is_number
 from mechlib.reporting.jsonready import plain as _plain
-from mechlib.reporting.jsonready import plain_tree as _plain_tree
 from mechlib.reporting.recordhelpers import RecordHelpers
 
 #: the record keys of claim verdicts: ``claims.<claim id>`` (see :meth:`Recorder.claim`)
@@ -76,6 +74,11 @@ class Recorder(RecordHelpers):
         (and ``context=`` for rows made from notebook values), refuses a key the plan does not
         hold, and :meth:`save` refuses a run that left a (not optional) key of it out. Without
         one (tests, scripts), :meth:`value` takes ``rtol``, ``atol``, ``glue`` and ``row``.
+    about : mapping, optional
+        The plan module's ``DATA``: each data file's one-line description, a str or
+        ``about(context)``, for :meth:`add_data` (:func:`mechlib.reporting.plans.recorder`).
+    timing_glue : mapping of str to str, optional
+        The plan module's ``TIMINGS``: the glue name of a timing's key, for :meth:`timing`.
     """
 
     notebook: str
@@ -87,6 +90,8 @@ class Recorder(RecordHelpers):
     data: dict[str, tuple[str, str]] = field(default_factory=dict)
     registry: Callable[[str], claims.ClaimSpec] | None = field(default=None, repr=False)
     plan: recordplan.Plan | None = field(default=None, repr=False)
+    about: Mapping[str, str | Callable[[Mapping[str, Any]], str]] = field(default_factory=dict)
+    timing_glue: Mapping[str, str] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         if self.plan is not None:
@@ -250,7 +255,7 @@ class Recorder(RecordHelpers):
         value : float
             The time (any unit the key names, e.g. ``_us``), finite and ≥ 0.
         glue : str, optional
-            Glue name for the prose.
+            Glue name for the prose; by default the one ``timing_glue`` gives the key, if any.
 
         Returns
         -------
@@ -265,6 +270,9 @@ class Recorder(RecordHelpers):
         """
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
+        if glue is not None and key in self.timing_glue:
+            raise ValueError(f"timing {key!r}: its glue is in the plan's TIMINGS: drop glue= here")
+        glue = self.timing_glue.get(key, glue)
         value = check_float(key, value, low=0.0)
         if glue is not None:
             self._check_name(glue)
@@ -312,38 +320,6 @@ class Recorder(RecordHelpers):
             self.report.append({k: _plain(v) for k, v in verdict.row().items()})
             words.append(verdict.word)
         return words[0] if len(words) == 1 else words
-
-    def add_data(self, name: str, content: Any, *, about: str) -> None:
-        """Keep a table or a model for the book's data bundle (not a record: nothing compares it).
-
-        Parameters
-        ----------
-        name : str
-            File stem, letters, digits and ``_``; unique in this notebook.
-        content : pandas.DataFrame or mapping
-            A table (written as CSV, full precision, headers with their units) or a JSON-ready
-            mapping (written as JSON).
-        about : str
-            One line for the bundle's README: what the file holds, with units.
-
-        Raises
-        ------
-        ValueError
-            A name used twice or not of that form, an empty ``about``, or content of another kind.
-        """
-        if not re.fullmatch(r"[A-Za-z0-9_]+", name) or name in {
-            f.rsplit(".")[0] for f in self.data
-        }:
-            raise ValueError(f"data name {name!r} is not [A-Za-z0-9_]+ or was already used")
-        if not about.strip():
-            raise ValueError(f"data {name!r} needs a one-line description (about), got none")
-        if hasattr(content, "to_csv"):
-            self.data[f"{name}.csv"] = (content.to_csv(index=False, lineterminator="\n"), about)
-        elif isinstance(content, Mapping):
-            text = json.dumps(_plain_tree(content), indent=1, ensure_ascii=False) + "\n"
-            self.data[f"{name}.json"] = (text, about)
-        else:
-            raise ValueError(f"data {name!r} must be a DataFrame or a mapping, got {type(content)}")
 
     def save(self, folder: Path | None = None) -> Path:
         """Write ``<folder>/<notebook>.json`` deterministically and return its path; the data
