@@ -223,3 +223,24 @@ def test_a_tolerance_scaled_by_a_reference_is_the_float_written_by_hand(tmp_path
     assert ROUNDOFF.scaled(eff) is ROUNDOFF  # no peak: nothing to scale
     with pytest.raises(ValueError, match="reference must be finite numbers"):
         peaked.scaled([np.nan])
+
+
+def test_each_named_tolerance_is_defined_in_one_module_and_reexported() -> None:
+    import importlib
+    import pkgutil
+
+    modules = [
+        importlib.import_module(f"{tolerances.__name__}.{m.name}")
+        for m in pkgutil.iter_modules(tolerances.__path__)
+    ]
+    owners: dict[str, list[str]] = {}
+    for module in modules:
+        for name, v in vars(module).items():
+            if isinstance(v, Tolerance) or getattr(v, "__module__", None) == module.__name__:
+                owners.setdefault(name, []).append(module.__name__)
+    assert {n: m for n, m in owners.items() if len(m) > 1} == {}  # a star import would hide one
+    assert all(
+        getattr(tolerances, n) is getattr(importlib.import_module(m[0]), n)
+        for n, m in owners.items()
+    )
+    assert "ROUNDOFF" in owners and "EXACT" in owners
