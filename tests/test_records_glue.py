@@ -288,3 +288,28 @@ def test_constants_are_recorded_as_the_calls_they_replace(tmp_path: Path) -> Non
         recorder()[0].constants()
     with pytest.raises(ValueError, match="no entry with value="):
         recorder({"m": plans.Entry(tol=EXACT)})[0].constants()
+
+
+def test_constants_by_prefix_and_a_mapping_of_full_keys_as_the_loops_they_replace() -> None:
+    quoted = {"design.published": [1.0, 2.0], "mesh.case": 3, "sweep.small": 0.5}
+    literal, _ = recorder()
+    for prefix, values in {"design": {"published": [1.0, 2.0]}, "mesh": {"case": 3}}.items():
+        literal.mapping(prefix, values, atol=0)
+    literal.value("sweep.small", 0.5, atol=0)
+    literal.value("other", 1, atol=0)
+    by_keys, _ = recorder()
+    assert by_keys.mapping(quoted, atol=0) is quoted
+    by_keys.value("other", 1, atol=0)
+    assert by_keys.values == literal.values
+    plan = {k: plans.Entry(tol=EXACT, value=v) for k, v in quoted.items()}
+    rec, _ = recorder(plan | {"other": plans.Entry(tol=EXACT)})
+    assert list(rec.constants("design.", "mesh.")) == ["design.published", "mesh.case"]
+    rec.value("other", 1)
+    rec.constants("sweep.")
+    assert rec.values == literal.values
+    with pytest.raises(ValueError, match=r"no entry with value= under \('x\.',\)"):
+        rec.constants("x.")
+    with pytest.raises(TypeError, match="a prefix and its values"):
+        rec.mapping("design")
+    with pytest.raises(TypeError, match="a prefix and its values"):
+        rec.mapping(quoted, quoted)

@@ -30,32 +30,47 @@ class RecordHelpers:
     """Shorthands over :meth:`Recorder.value` and :meth:`Recorder.text`."""
 
     def mapping(
-        self: _Recording, prefix: str, values: Mapping[str, Any], **kwargs: Any
+        self: _Recording,
+        prefix: str | Mapping[str, Any],
+        values: Mapping[str, Any] | None = None,
+        **kwargs: Any,
     ) -> Mapping[str, Any]:
-        """Record each ``values[name]`` under ``<prefix>.<name>``, in the mapping's order.
+        """Record each ``values[name]`` under ``<prefix>.<name>``, in the mapping's order; or,
+        given one mapping of full keys (``rec.mapping({"design.published": d, ...})``), each
+        value under its key.
 
         Parameters
         ----------
-        prefix : str
-            The keys' common first part (``"geometry"``).
-        values : mapping
-            Names to values.
+        prefix : str or mapping
+            The keys' common first part (``"geometry"``), or the mapping of full keys to values.
+        values : mapping, optional
+            Names to values (with a prefix only).
         **kwargs
             Passed to every :meth:`Recorder.value` call (``rtol=`` … without a plan).
 
         Returns
         -------
         mapping
-            ``values``, so that the record can be written inline.
-        """
-        for name, value in values.items():
-            self.value(f"{prefix}.{name}", value, **kwargs)
-        return values
+            The mapping given, so that the record can be written inline.
 
-    def constants(self: _Recording) -> dict[str, Any]:
-        """Record every constant of the plan (entries with a ``value=``), in the plan's order,
+        Raises
+        ------
+        TypeError
+            A prefix without values, or a mapping of full keys with values too.
+        """
+        if isinstance(prefix, str) == (values is None):
+            raise TypeError("mapping takes a prefix and its values, or one mapping of full keys")
+        given: Mapping[str, Any] = values if values is not None else prefix  # type: ignore[assignment]
+        keys = {f"{prefix}.{n}" if values is not None else n: v for n, v in given.items()}
+        for key, value in keys.items():
+            self.value(key, value, **kwargs)
+        return given
+
+    def constants(self: _Recording, *prefixes: str) -> dict[str, Any]:
+        """Record the constants of the plan (entries with a ``value=``), in the plan's order,
         each as ``rec.value(key, entry.value)``: the same keys, values, tolerances, glue, texts
-        and rows as those calls.
+        and rows as those calls. With ``prefixes``, only those whose key starts with one of them
+        (so that constants recorded at several places of a page keep their report order).
 
         Returns
         -------
@@ -65,13 +80,17 @@ class RecordHelpers:
         Raises
         ------
         ValueError
-            A recorder without a plan, or a plan with no constant.
+            A recorder without a plan, or no constant (with those prefixes) in the plan.
         """
         if self.plan is None:
             raise ValueError("constants: they are a plan's entries with value=; this has no plan")
-        constants = {key: e.value for key, e in self.plan.items() if e.is_constant}
+        constants = {
+            key: e.value
+            for key, e in self.plan.items()
+            if e.is_constant and (not prefixes or key.startswith(prefixes))
+        }
         if not constants:
-            raise ValueError("constants: the plan has no entry with value=")
+            raise ValueError(f"constants: the plan has no entry with value= under {prefixes}")
         for key, value in constants.items():
             self.value(key, value)
         return constants
