@@ -30,3 +30,66 @@ NONLINEAR_FE_REL = Tolerance(
     rtol=1e-3,
     why="as NONLINEAR_FE, for a value that is never near 0",
 )
+BEAM_REACH_PCT = Tolerance(
+    rtol=2e-4,
+    atol=1e-6,
+    why="the reduced beam model's worst misfit of Eq 8 in %, from a bounded least-squares fit: "
+    "1.4e-5 of itself apart under another machine's BLAS kernel and SIMD paths (measured); a "
+    "floor of 1e-6 points for the misfits of reachable thicknesses, near 0",
+)
+BEAM_REACH_FAR = Tolerance(
+    rtol=1e-4,
+    why="the beam model's worst misfit of Eq 8 at a thickness it cannot reach (tens of %): far "
+    "from 0, moved by ~1e-5 of itself where the bounded fit stops on another machine",
+)
+ROUNDED_THICKNESS = Tolerance(
+    rtol=1e-5,
+    why="a plate thickness in mm, a parameter or the identified member's, rounded by its fit to "
+    "a 1e-6 mm grid: a re-run lands on the same grid point or the next, under 1e-5 of itself",
+)
+MESH_STUDY_PCT = Tolerance(
+    rtol=1e-2,
+    atol=5e-4,
+    why="a change of the non-linear departure between two meshes or quadratures, in % of the "
+    "departure: 2.7e-5 points apart across three BLAS kernels; changes below 1e-3 % are "
+    "round-off",
+)
+MESH_STUDY_LINEAR_PCT = Tolerance(
+    rtol=1e-2,
+    atol=5e-5,
+    why="the change of the linear poses between two meshes or quadratures, in % of full scale: "
+    "1e-6 points apart across three BLAS kernels; changes below 1e-3 % are round-off",
+)
+LEAN_FIT_CHANGE_PCT = Tolerance(
+    atol=1e-3,
+    why="the change, in %, of a dimension by a lean model's fit, which rounds every geometry to "
+    "a 1e-6 mm grid: the same steps and stop on any processor",
+)
+LEAN_DEPARTURE_PCT = Tolerance(
+    rtol=1e-2,
+    atol=0.05,
+    why="the difference of two models' departures from linearity, in % of the departure: to 1 % "
+    "of itself, and absolutely to what a lean fit stopping elsewhere within its tolerance "
+    "could move it (0.05 points)",
+)
+
+
+def lean_pose_pct(fit_tol: float) -> Tolerance:
+    """The tolerance of the difference of two models' non-linear poses in % of full scale, the
+    lean model fitted to relative tolerance ``fit_tol``: 1 % of itself, and ``100 * fit_tol``
+    points absolutely (what a fit stopping elsewhere within ``fit_tol`` could move it).
+
+    Raises
+    ------
+    ValueError
+        ``fit_tol`` not a number in (0, 1].
+    """
+    if isinstance(fit_tol, bool) or not isinstance(fit_tol, (int, float)) or not 0 < fit_tol <= 1:
+        raise ValueError(f"lean_pose_pct: fit_tol must be a number in (0, 1], got {fit_tol!r}")
+    return Tolerance(
+        rtol=1e-2,
+        atol=100 * fit_tol,
+        why="the difference of two models' non-linear poses in % of full scale: to 1 % of "
+        "itself, and absolutely to what a lean fit stopping elsewhere within its tolerance "
+        "could move it (100 fit_tol points)",
+    )
