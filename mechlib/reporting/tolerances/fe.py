@@ -20,6 +20,61 @@ FE_STUDY_PCT = Tolerance(
     why="a small difference of two FE solves (a mesh or model change) in percent: the "
     "difference magnifies the solves' 1e-7 agreement; a floor of 1e-9 points near 0",
 )
+FE_LINEAR = Tolerance(
+    rtol=1e-6,
+    peak=1e-6,
+    why="responses of linear FE solves (a sparse direct factorisation) and least-squares fits "
+    "or main effects of them: kernels agree to ~1e-8 relative on every entry away from 0; "
+    "the entries that the structure's symmetry makes 0 are round-off, bounded at 1e-6 of the "
+    "largest entry",
+)
+FE_LINEAR_REL = Tolerance(
+    rtol=1e-6,
+    why="a ratio, a range of ratios or a condition number made from linear FE responses, "
+    "never near 0: the solves' ~1e-8 relative agreement between kernels stays inside 1e-6",
+)
+FE_FIT_RESIDUE = Tolerance(
+    atol=1e-6,
+    why="a relative deviation that is 0 in exact arithmetic (a least-squares fit to exactly "
+    "linear FE responses against the model's own compliance, the second-order terms of such a "
+    "fit): round-off near 1e-10 without a relative size, bounded absolutely at 1e-6",
+)
+FE_ROUNDOFF_PCT = Tolerance(
+    atol=1e-5,
+    why="a relative error in percent that is 0 in exact arithmetic (a linear meta-model against "
+    "the linear FE runs whose compliance it is): round-off near 1e-8 %, bounded absolutely at "
+    "1e-5 points",
+)
+FE_ROUNDOFF_RESPONSE = Tolerance(
+    peak=1e-6,
+    why="errors in µm and µrad that are 0 in exact arithmetic (a linear meta-model against the "
+    "linear FE runs whose compliance it is): round-off, bounded at 1e-6 of the largest FE "
+    "response they are errors of (a plan takes the peak of those responses)",
+)
+PENALIZED_FIT = Tolerance(
+    rtol=0.05,
+    atol=1e-6,
+    why="the bias of a penalized least-squares fit whose penalty cross-validation picks from a "
+    "grid: where two penalties nearly tie, another kernel can pick the neighbour and move the "
+    "bias by a few percent; 5 %, with a floor of 1e-6 for a bias near 0",
+)
+INVERSE_RESIDUE = Tolerance(
+    atol=1e-8,
+    why="the largest entry of S⁻¹S − I for a 6 × 6 matrix and its computed inverse: 0 in exact "
+    "arithmetic, round-off of ~1e-16 times the condition number, bounded absolutely at 1e-8",
+)
+POSE_ROUND_TRIP = Tolerance(
+    atol=1e-10,
+    why="poses sent through a 6 × 6 inverse and back, relative to their size: 0 in exact "
+    "arithmetic, round-off of ~1e-16 times the condition number, bounded absolutely at 1e-10",
+)
+GAUSSIAN_PROCESS = Tolerance(
+    rtol=1e-2,
+    atol=1e-4,
+    why="errors of Gaussian processes fitted to noise-free data by a seeded optimiser with "
+    "restarts on the log-likelihood: its stopping point moves between kernels, and the "
+    "errors with it; 1 %, with a floor of 1e-4 points for errors near 0",
+)
 NONLINEAR_FE = Tolerance(
     rtol=1e-3,
     atol=1e-6,
@@ -29,6 +84,25 @@ NONLINEAR_FE = Tolerance(
 NONLINEAR_FE_REL = Tolerance(
     rtol=1e-3,
     why="as NONLINEAR_FE, for a value that is never near 0",
+)
+NONLINEAR_FE_PEAK = Tolerance(
+    rtol=1e-3,
+    peak=1e-6,
+    why="as NONLINEAR_FE, for arrays in µm and µrad (main effects, pose differences) whose "
+    "entries near 0 are round-off of a large whole: a floor of 1e-6 of the largest entry (a "
+    "plan may take the peak of the poses they are made of)",
+)
+NONLINEAR_FE_PCT = Tolerance(
+    rtol=1e-3,
+    atol=1e-5,
+    why="as NONLINEAR_FE, for a percentage difference of non-linear FE results (from the linear "
+    "ones, from a closed form) that can be 0: a floor of 1e-5 points",
+)
+NONLINEAR_FE_RATIO = Tolerance(
+    rtol=1e-3,
+    atol=1e-9,
+    why="as NONLINEAR_FE, for ratios of fitted coefficients (second-order over linear) that "
+    "can be as small as 1e-7: a floor of 1e-9",
 )
 BEAM_REACH_PCT = Tolerance(
     rtol=2e-4,
