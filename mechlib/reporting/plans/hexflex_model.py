@@ -56,6 +56,12 @@ DIMENSIONS = (
 )
 
 
+def _listed(values: Any) -> str:
+    """Numbers as the prose lists them: two decimals, comma-separated (as many as a parameter
+    makes: the free dimensions' singular values, the mesh study's refinements)."""
+    return ", ".join(f"{v:.2f}" for v in values)
+
+
 def _fit_rows(context: Mapping[str, Any]) -> list[report.RowSpec]:
     """Eq 8's four fitted magnitudes against the model; the tolerance says how it was made
     (context: ``fit_tol`` and ``n_fe``, the FE models the identification built, 0 when the
@@ -125,7 +131,7 @@ PLAN: dict[str, Entry] = {
     "model.element": Entry(tol=EXACT),
     "fit.free_dimensions_mm": Entry(tol=FE_IDENTIFIED, rows=_free_dimensions_row),
     # --- which dimensions Eq 8 determines
-    "sensitivity.fe_singular_values": Entry(tol=FE_SENSITIVITY),
+    "sensitivity.fe_singular_values": Entry(tol=FE_SENSITIVITY, texts={"sv_fe": _listed}),
     "sensitivity.frame_singular_values": Entry(
         tol=BEAM_MODEL_SENSITIVITY,
         glue={"sv_frame_0": 0, "sv_frame_1": 1, "sv_frame_2": 2, "sv_frame_3": 3},
@@ -162,7 +168,9 @@ PLAN: dict[str, Entry] = {
     "convergence.q2_chosen_vs_finest_pct": Entry(tol=MESH_CHANGE_PCT, glue="conv_finest"),
     "convergence.q2_coarse_region_pct": Entry(tol=MESH_CHANGE_PCT, glue="conv_coarse"),
     "convergence.shell_vs_q2_pct": Entry(tol=MESH_CHANGE_PCT, glue="shell_vs_q2"),
-    "convergence.steps_pct": Entry(tol=MESH_CHANGE_PCT),
+    # the largest change of the four magnitudes at each flexure refinement (as many as the study's
+    # refinements: a list in the prose)
+    "convergence.steps_pct": Entry(tol=MESH_CHANGE_PCT, texts={"conv_steps": _listed}),
     # the fit's worst miss plus the larger change of refining the flexures or the free region
     "convergence.compliance_band_pct": Entry(tol=MESH_CHANGE_PCT, glue="compliance_band"),
     # --- figures 3, 4, 5 and 8
