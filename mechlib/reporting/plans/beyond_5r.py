@@ -3,6 +3,9 @@ records, with its tolerance, glue and report rows."""
 
 from __future__ import annotations
 
+from mechlib.calibration import statistics as cs
+from mechlib.fivebar import mechanism as fivebar
+from mechlib.mechanisms import catalog, gough_stewart, rrr3
 from mechlib.reporting import report
 from mechlib.reporting.plans import Entry
 from mechlib.reporting.tolerances import (
@@ -34,8 +37,13 @@ COMPARISON: dict[str, Entry] = {
 }
 
 PLAN: dict[str, Entry] = {
+    # the designs' constants (rec.constants())
     "design.dimensions_m": Entry(
         tol=EXACT,
+        value=[
+            *(rrr3.BASE_RADIUS, rrr3.PLATFORM_RADIUS, rrr3.PROXIMAL, rrr3.DISTAL),
+            *(gough_stewart.BASE_RADIUS, gough_stewart.PLATFORM_RADIUS, gough_stewart.HOME_Z),
+        ],
         glue={
             "design_rrr_base": 0,
             "design_rrr_platform": 1,
@@ -46,11 +54,15 @@ PLAN: dict[str, Entry] = {
             "design_ups_height": 6,
         },
     ),
-    "design.fivebar_miw_share_pct": Entry(tol=EXACT, glue="design_5r_pct"),
-    "design.fivebar_spacing_m": Entry(
-        tol=EXACT, glue={"design_5r_spacing": 0, "design_5r_grid": 1}
+    "design.fivebar_miw_share_pct": Entry(
+        tol=EXACT, glue="design_5r_pct", value=100 * catalog.FIVEBAR_FRACTION
     ),
-    "design.claim_max_p_pct": Entry(tol=EXACT, glue="claim_p_pct"),
+    "design.fivebar_spacing_m": Entry(
+        tol=EXACT,
+        glue={"design_5r_spacing": 0, "design_5r_grid": 1},
+        value=[fivebar.CANDIDATE_SPACING, fivebar.GRID_SPACING],
+    ),
+    "design.claim_max_p_pct": Entry(tol=EXACT, glue="claim_p_pct", value=100 * cs.CLAIM_MAX_P),
     "mechanisms.identifiable_rank": Entry(
         tol=EXACT,
         rows=report.Computed(
@@ -104,3 +116,6 @@ PLAN: dict[str, Entry] = {
     "cost.conditioning": Entry(tol=CONDITIONING),
     "cost.dc_better_conditioned": Entry(tol=EXACT),
 }
+
+#: the measured solve-time ratios, traditional / D&C (machine-dependent, not compared), glued
+TIMINGS = {f"cost.time_ratio_{m}": f"time_ratio_{m}" for m in MECHANISMS}
