@@ -111,3 +111,44 @@ def test_the_other_members_verdicts_read_as_written_by_hand() -> None:
     )
     assert pasted["lean_unfitted"] == "every member's lean fit met its tolerance"
     assert pasted["lean_other_use"].startswith("The stand-in meets the criteria on every member")
+
+
+def test_the_other_members_summary_reads_as_written_by_hand_on_every_branch() -> None:
+    pose, dep, moves, own_move = np.array([0.5, 0.31]), np.array([5.4, 2.0]), [1.9, 0.7], 0.0023
+    fitted, pasted = planned()
+    fitted.value("lean.other_failed_runs", 0)
+    fitted.value("lean.other_worst_pose_pct", pose)
+    fitted.value("lean.other_worst_departure_pct", dep)
+    fitted.value("lean.other_largest_dimension_change_pct", np.array(moves))
+    fitted.value(
+        "lean.largest_dimension_change_pct",
+        100 * own_move,
+        context={"fitted": [0.45, 0.55], "others": [0.35, 0.45, 0.55]},
+    )
+    assert pasted["lean_other_summary"] == (
+        f"On the other members whose stand-in was fitted the lean stand-in's poses differ from "
+        f"the chapter's mesh by up to {pose.max():.2g} % of full scale and its "
+        f"departures by up to {dep.max():.2g} % of themselves ({0} runs "
+        f"did not converge). The lean fits moved a free dimension by up to {max(moves):.2g} % "
+        f"on those members, against {100 * own_move:.2g} % on the identified one."
+    )
+    assert "up to 0.5 % of full scale" in pasted["lean_other_summary"]
+    assert fitted.glued["lean_other_summary"] == {
+        "text_of": "lean.other_worst_pose_pct,lean.other_worst_departure_pct,"
+        "lean.other_failed_runs,lean.other_largest_dimension_change_pct,"
+        "lean.largest_dimension_change_pct"
+    }
+    for others, text in (
+        ([0.35], "No other member's stand-in was fitted, so none was compared."),
+        ([], "No other member was solved."),
+    ):
+        rec, pasted = planned()
+        unfitted = {t: (1.2, 20) for t in others}
+        rec.value("lean.unfitted_members_mm", others, context={"unfitted": unfitted})
+        rec.value(
+            "lean.largest_dimension_change_pct",
+            100 * own_move,
+            context={"fitted": [], "others": others},
+        )
+        assert pasted["lean_other_summary"] == text
+        assert rec.glued["lean_other_summary"] == {"text_of": "lean.unfitted_members_mm"}

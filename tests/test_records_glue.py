@@ -197,6 +197,62 @@ def test_texts_that_are_not_text_or_name_a_glue_twice_are_refused() -> None:
     assert rec.values == {} and rec.glued == {} and pasted == {}
 
 
+def test_a_text_made_of_several_keys_is_glued_as_made_of_them(tmp_path: Path) -> None:
+    def keys(v: float, c: dict[str, Any]) -> tuple[str, ...]:
+        return ("m.worst", "m.failed", "m.own") if c["some"] else ("m.none",)
+
+    def text(v: dict[str, Any], c: dict[str, Any]) -> str:
+        if not c["some"]:
+            return "none compared"
+        return f"up to {max(v['m.worst']):.2g} % ({v['m.failed']} failed), own {v['m.own']:.2g} %"
+
+    plan = {
+        "m.none": plans.Entry(tol=EXACT),
+        "m.worst": plans.Entry(tol=ROUNDOFF, optional=True),
+        "m.failed": plans.Entry(tol=EXACT, optional=True),
+        "m.own": plans.Entry(tol=ROUNDOFF, texts={"summary": plans.MadeOf(keys, text)}),
+    }
+    worst = np.array([0.5, 0.25])
+    literal, by_hand = recorder()
+    literal.value("m.none", [], atol=0)
+    literal.value("m.worst", worst, rtol=1e-9)
+    literal.value("m.failed", 0, atol=0)
+    literal.value("m.own", 0.23, rtol=1e-9)
+    literal.text(
+        "summary",
+        f"up to {worst.max():.2g} % ({0} failed), own {0.23:.2g} %",
+        of="m.worst,m.failed,m.own",
+    )
+    rec, pasted = recorder(plan)
+    rec.value("m.none", [])
+    rec.value("m.worst", worst)
+    rec.value("m.failed", 0)
+    rec.value("m.own", 0.23, context={"some": True})
+    stored = same(tmp_path, literal, rec)
+    assert stored["glue"]["summary"] == {"text_of": "m.worst,m.failed,m.own"}
+    assert pasted == by_hand and pasted["summary"] == "up to 0.5 % (0 failed), own 0.23 %"
+    none, pasted = recorder(plan)
+    none.value("m.none", [])
+    none.value("m.own", 0.23, context={"some": False})
+    assert none.glued["summary"] == {"text_of": "m.none"} and pasted["summary"] == "none compared"
+
+
+def test_a_text_made_of_keys_not_recorded_or_badly_given_is_refused() -> None:
+    plan = {
+        "u.a": plans.Entry(tol=EXACT, optional=True),
+        "u.b": plans.Entry(tol=EXACT, texts={"ab": plans.MadeOf(("u.a", "u.b"), str)}),
+    }
+    rec, pasted = recorder(plan)
+    with pytest.raises(ValueError, match=r"u\.b: its plan text is made of \['u\.a'\], which were"):
+        rec.value("u.b", 1)
+    assert rec.values == {} and rec.glued == {} and pasted == {}
+    for keys in ((), "u.a", ("u.a", 3)):
+        with pytest.raises(TypeError, match="MadeOf keys must be a tuple"):
+            plans.MadeOf(keys, str)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="MadeOf text must be"):
+        plans.MadeOf(("u.a",), "u.a")  # type: ignore[arg-type]
+
+
 def test_skipped_gives_a_planned_keys_texts_the_label() -> None:
     plan = {"s.v": plans.Entry(tol=EXACT, glue="s_n", texts={"s_list": str}, optional=True)}
     rec, pasted = recorder(plan)

@@ -150,12 +150,15 @@ class Recorder(RecordHelpers):
                     f"{key}: {self.notebook} records by its plan, which gives the tolerance, "
                     f"glue and rows: drop {', '.join(given)}= here"
                 )
-            got = recordplan.resolve(self.plan, key, value, context, self.notebook)
+            recorded = {k: e["value"] for k, e in self.values.items()}
+            got = recordplan.resolve(self.plan, key, value, context, self.notebook, recorded)
             rtol, atol, glue, row = got.tol.rtol, got.tol.atol_for(value), got.glue, got.rows
         elif context is not None:
             raise ValueError(f"{key}: context= is read by a plan; {self.notebook} has none")
-        texts = got.texts if self.plan is not None else None
-        return self._record(key, value, rtol=rtol, atol=atol, glue=glue, row=row, texts=texts)
+        texts, text_of = (got.texts, got.text_of) if self.plan is not None else (None, None)
+        return self._record(
+            key, value, rtol=rtol, atol=atol, glue=glue, row=row, texts=texts, text_of=text_of
+        )
 
     def _record(
         self,
@@ -167,8 +170,10 @@ class Recorder(RecordHelpers):
         glue: Glue | None,
         row: report.RowSpec | Sequence[report.RowSpec] | None,
         texts: Mapping[str, str | float] | None = None,
+        text_of: Mapping[str, str] | None = None,
     ) -> Any:
-        """:meth:`value` once its tolerance, glue, rows and texts (made of it) are known."""
+        """:meth:`value` once its tolerance, glue, rows and texts (made of it, or of the keys
+        ``text_of`` gives by name) are known."""
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
@@ -201,7 +206,7 @@ class Recorder(RecordHelpers):
         for name, item in pasted.items():
             self.paste(name, item)
         for name, text in (texts or {}).items():
-            self.text(name, text, of=key)
+            self.text(name, text, of=(text_of or {}).get(name, key))
         return value
 
     def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> str | float:

@@ -25,10 +25,10 @@ import re
 from types import ModuleType
 from typing import Any
 
-from mechlib.reporting.recordplan import Entry, Extremes, Plan
+from mechlib.reporting.recordplan import Entry, Extremes, MadeOf, Plan
 from mechlib.reporting.records import Recorder
 
-__all__ = ["Entry", "Extremes", "Plan", "load", "recorder"]
+__all__ = ["Entry", "Extremes", "MadeOf", "Plan", "load", "recorder"]
 
 
 def load(notebook: str) -> Plan:

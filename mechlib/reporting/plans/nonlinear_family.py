@@ -17,7 +17,7 @@ import numpy as np
 from mechlib import published as pub
 from mechlib.hexflex.studies.leanmesh import FIT_TOL
 from mechlib.reporting import report
-from mechlib.reporting.recordplan import Entry, Extremes
+from mechlib.reporting.recordplan import Entry, Extremes, MadeOf
 from mechlib.reporting.tolerances import (
     BEAM_REACH_FAR,
     BEAM_REACH_PCT,
@@ -39,6 +39,15 @@ R = tuple(pub.RESPONSES)
 LEAN_POSE_PCT = lean_pose_pct(FIT_TOL)
 #: the lean comparison's parts: the validation draw's runs and the sweep along its first run
 LEAN_PARTS = ("runs", "sweep")
+#: what the other members' summary quotes, in its order: their lean comparison's largest
+#: differences, failed runs and fits' moves, then the identified member's fit's move
+OTHER_SUMMARY_OF = (
+    "lean.other_worst_pose_pct",
+    "lean.other_worst_departure_pct",
+    "lean.other_failed_runs",
+    "lean.other_largest_dimension_change_pct",
+    "lean.largest_dimension_change_pct",
+)
 
 
 def _nl_mesh_text(dofs: list[int], c: Mapping[str, Any]) -> str:
@@ -97,6 +106,29 @@ def _other_use(meet: np.ndarray) -> str:
         "Because it does not meet them on every member, this page solves its members on the "
         "chapter's mesh rule by default (the nonlinear_mesh parameter), while the DOE chapter and "
         "the meta-model page use the identified member's stand-in"
+    )
+
+
+def _other_summary_of(own_move: float, c: Mapping[str, Any]) -> tuple[str, ...]:
+    """What the other members' summary is made of: their comparison when a stand-in was fitted
+    (``c["fitted"]``: their thicknesses), else the list of the members without one."""
+    return OTHER_SUMMARY_OF if c["fitted"] else ("lean.unfitted_members_mm",)
+
+
+def _other_summary(v: Mapping[str, Any], c: Mapping[str, Any]) -> str:
+    """The other members' lean comparison in a sentence, or why there is none (``c["others"]``:
+    the other members' thicknesses)."""
+    if not c["fitted"]:
+        if c["others"]:
+            return "No other member's stand-in was fitted, so none was compared."
+        return "No other member was solved."
+    pose, dep, failed, moves, own = (v[k] for k in OTHER_SUMMARY_OF)
+    return (
+        f"On the other members whose stand-in was fitted the lean stand-in's poses differ from "
+        f"the chapter's mesh by up to {max(pose):.2g} % of full scale and its departures by up to "
+        f"{max(dep):.2g} % of themselves ({failed} runs did not converge). The lean fits moved a "
+        f"free dimension by up to {max(moves):.2g} % on those members, against {own:.2g} % on "
+        f"the identified one."
     )
 
 
@@ -223,7 +255,11 @@ PLAN: dict[str, Entry] = {
     ),
     # --- the lean mesh, on the other members ---
     "parameters.lean_other_runs": Entry(tol=EXACT, glue="n_lean_other_runs"),
-    "lean.largest_dimension_change_pct": Entry(tol=LEAN_FIT_CHANGE_PCT, glue="lean_own_move"),
+    # recorded last: the other members' summary quotes it with their comparison's numbers
+    "lean.largest_dimension_change_pct": Entry(
+        tol=LEAN_FIT_CHANGE_PCT,
+        texts={"lean_other_summary": MadeOf(_other_summary_of, _other_summary)},
+    ),
     "lean.unfitted_members_mm": Entry(tol=ROUNDED_THICKNESS, texts={"lean_unfitted": _unfitted}),
     "lean.other_meet_criteria": Entry(
         tol=EXACT,
@@ -232,14 +268,8 @@ PLAN: dict[str, Entry] = {
     ),
     "lean.other_members_mm": Entry(tol=ROUNDED_THICKNESS, optional=True),
     "lean.other_dofs": Entry(tol=EXACT, optional=True),
-    "lean.other_failed_runs": Entry(tol=EXACT, glue="n_lean_other_failed", optional=True),
-    "lean.other_worst_pose_pct": Entry(
-        tol=LEAN_POSE_PCT, glue=Extremes(high="lean_other_pose_max"), optional=True
-    ),
-    "lean.other_worst_departure_pct": Entry(
-        tol=LEAN_DEPARTURE_PCT, glue=Extremes(high="lean_other_dep_max"), optional=True
-    ),
-    "lean.other_largest_dimension_change_pct": Entry(
-        tol=LEAN_FIT_CHANGE_PCT, glue=Extremes(high="lean_other_move_max"), optional=True
-    ),
+    "lean.other_failed_runs": Entry(tol=EXACT, optional=True),
+    "lean.other_worst_pose_pct": Entry(tol=LEAN_POSE_PCT, optional=True),
+    "lean.other_worst_departure_pct": Entry(tol=LEAN_DEPARTURE_PCT, optional=True),
+    "lean.other_largest_dimension_change_pct": Entry(tol=LEAN_FIT_CHANGE_PCT, optional=True),
 }
