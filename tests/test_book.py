@@ -65,6 +65,9 @@ def test_find_section_prefers_most_artefacts_then_words_then_none() -> None:
         'rec.value("d", dims, atol=0, row=report.Computed("Fig 2", "dims"))\nrec.value("n", n)',
         'rec.text("label", "θx", of="d")\nrec.value("r", r, rtol=1e-6, glue={"r0": 0})',
         "# round-off of printed sums\nROUNDOFF = 1e-9\nrec.value('e', e, rtol=ROUNDOFF)",
+        'rec.value("a", a)\nrec.value("b", ok, context={"span_text": span_text});',
+        'rec.mapping("geometry", geometry.as_dict())\nrec.skipped(["q_dep", "q.v"], why="one run")',
+        "rec.constants()",
     ],
 )
 def test_bookkeeping_cells_are_recognised(source: str) -> None:
@@ -78,6 +81,8 @@ def test_bookkeeping_cells_are_recognised(source: str) -> None:
         'glue("fig", fig)',  # displays
         'print(f"effects {effects}")',  # prints a result
         "tol = 1e-9\nrec.value('e', e, rtol=tol)",  # a lower-case name is not a named tolerance
+        'rec.value("b", ok, context={"s": f(x)})\nx = g(1)',  # computes after recording
+        'rec.add_data("t", table, about="a table")',  # the data bundle: not a one-line record
         "rec.value(",  # does not parse
         "",
     ],

@@ -221,6 +221,10 @@ class Summary(NamedTuple):
     median_rel_pct: np.ndarray
     worst_row: np.ndarray
 
+    def statistics(self) -> dict[str, np.ndarray]:
+        """The six statistics by field name, in field order (``worst_row``, an index, left out)."""
+        return {name: value for name, value in self._asdict().items() if name != "worst_row"}
+
 
 def summarise(
     model: object, fe: object, loads: object, *, where: object = None, span_of: object = None
@@ -265,6 +269,26 @@ def summarise(
         100.0 * np.array([md for _, md in rel_stats]),
         worst_row,
     )
+
+
+def excess_ranges(excess: object) -> dict[str, list[float] | np.ndarray]:
+    """The range of each component's relative excess (:func:`relative_excess`, NaN where not
+    compared): ``ux_pct``, ``uy_pct``, ``phi_pct`` as [smallest, largest], and ``abs_max_pct``,
+    the largest magnitude per component.
+
+    Raises
+    ------
+    ValueError
+        If ``excess`` is not an (n, 3) array.
+    """
+    e = np.asarray(excess, dtype=float)
+    if e.ndim != 2 or e.shape[1] != len(COMPONENTS):
+        raise ValueError(f"excess must be an (n, 3) array, got shape {e.shape}")
+    ranges = {
+        f"{name}_pct": [np.nanmin(c), np.nanmax(c)]
+        for name, c in zip(("ux", "uy", "phi"), e.T, strict=True)
+    }
+    return ranges | {"abs_max_pct": np.nanmax(np.abs(e), axis=0)}
 
 
 def worst_by(keys: object, values: object) -> tuple[np.ndarray, np.ndarray]:

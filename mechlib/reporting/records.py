@@ -11,7 +11,6 @@ check a cold re-run gives the same bytes — is the build wing's (:mod:`mechlib.
 from __future__ import annotations
 
 import json
-import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,21 +21,10 @@ import numpy as np
 from mechlib.blasinfo import openblas_kernel
 from mechlib.params import check_float
 from mechlib.paths import records_dir
-from mechlib.reporting import claims, report
-
-
-def _plain(value: Any) -> Any:
-    """Convert numpy scalars/arrays and tuples to JSON-ready Python objects."""
-    if isinstance(value, np.ndarray):
-        return [_plain(v) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    if isinstance(value, float) and not np.isfinite(value):
-        raise ValueError(f"records hold finite numbers only, got {value!r}")
-    return value
-
+from mechlib.reporting import claims, recordplan, report
+from mechlib.reporting.jsonready import is_number as _is_number
+from mechlib.reporting.jsonready import plain as _plain
+from mechlib.reporting.recordhelpers import RecordHelpers
 
 #: the record keys of claim verdicts: ``claims.<claim id>`` (see :meth:`Recorder.claim`)
 CLAIM_PREFIX = "claims."
@@ -45,25 +33,10 @@ CLAIM_PREFIX = "claims."
 Glue = str | Mapping[str, int | tuple[int, ...]]
 
 
-def _plain_tree(value: Any) -> Any:
-    """:func:`_plain` through mappings too (keys as strings)."""
-    if isinstance(value, Mapping):
-        return {str(k): _plain_tree(v) for k, v in value.items()}
-    if isinstance(value, np.ndarray):
-        return [_plain_tree(v) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_plain_tree(v) for v in value]
-    return _plain(value)
-
-
 #: the folder, under the records folder, of the data a notebook keeps for the bundle
 DATA_DIR = "data"
 #: each notebook's data folder's list of files and their descriptions
 DATA_INDEX = "index.json"
-
-
-def _is_number(value: Any) -> bool:
-    return np.asarray(value).dtype.kind in "iuf"
 
 
 def paste(name: str, value: Any) -> None:
@@ -74,7 +47,7 @@ def paste(name: str, value: Any) -> None:
 
 
 @dataclass
-class Recorder:
+class Recorder(RecordHelpers):
     """Collects the key numbers, the numbers quoted in the prose and the report rows of one
     notebook.
 
@@ -82,7 +55,7 @@ class Recorder:
     elements) available to the prose under a glue name, and adds the report row that compares
     it with the thesis: every number the book quotes is then checked against the committed
     references. Text that is not a number goes to the prose through :meth:`text`, which says
-    what it is made from or why it is not checked.
+    what it is made from or why it is not checked. Shorthands: :meth:`mapping`, :meth:`skipped`.
 
     Parameters
     ----------
@@ -95,6 +68,17 @@ class Recorder:
         that :meth:`claim` judges (the book's registry: :func:`mechlib.reporting.claimlist.claim`).
         Passed by the notebook, so that the recorder imports no science: the registry reads
         constants of the science packages, the recorder sits below them.
+    plan : mapping of str to recordplan.Entry, optional
+        The chapter's record plan (:mod:`mechlib.reporting.plans`): every key it records, with
+        its tolerance, glue and report rows. With a plan, :meth:`value` takes the value alone
+        (and ``context=`` for rows made from notebook values), refuses a key the plan does not
+        hold, and :meth:`save` refuses a run that left a (not optional) key of it out. Without
+        one (tests, scripts), :meth:`value` takes ``rtol``, ``atol``, ``glue`` and ``row``.
+    about : mapping, optional
+        The plan module's ``DATA``: each data file's one-line description, a str or
+        ``about(context)``, for :meth:`add_data` (:func:`mechlib.reporting.plans.recorder`).
+    timing_glue : mapping of str to str, optional
+        The plan module's ``TIMINGS``: the glue name of a timing's key, for :meth:`timing`.
     """
 
     notebook: str
@@ -105,6 +89,13 @@ class Recorder:
     timings: dict[str, float] = field(default_factory=dict)
     data: dict[str, tuple[str, str]] = field(default_factory=dict)
     registry: Callable[[str], claims.ClaimSpec] | None = field(default=None, repr=False)
+    plan: recordplan.Plan | None = field(default=None, repr=False)
+    about: Mapping[str, str | Callable[[Mapping[str, Any]], str]] = field(default_factory=dict)
+    timing_glue: Mapping[str, str] = field(default_factory=dict, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.plan is not None:
+            recordplan.check_plan(self.plan, self.notebook)
 
     def value(
         self,
@@ -115,9 +106,10 @@ class Recorder:
         atol: float | None = None,
         glue: Glue | None = None,
         row: report.RowSpec | Sequence[report.RowSpec] | None = None,
+        context: Mapping[str, Any] | None = None,
     ) -> Any:
         """Record ``value`` under ``key`` with the tolerance a re-run must meet; glue it for the
-        prose and add its report row(s).
+        prose and add its report row(s). With a plan, all but the value come from the plan.
 
         Parameters
         ----------
@@ -134,6 +126,9 @@ class Recorder:
             (as Python ``float``/``int``, what myst-nb formats).
         row : report.Comparison, report.Check, report.Computed or report.NotReproduced, or a list
             Report rows completed with this value (see :mod:`mechlib.reporting.report`).
+        context : dict, optional
+            With a plan: the notebook's values its entry's functions read, by name (they find
+            the recorded value itself under ``"value"``: :mod:`~mechlib.reporting.recordplan`).
 
         Returns
         -------
@@ -143,8 +138,42 @@ class Recorder:
         ------
         ValueError
             A key or glue name used twice, a number without tolerance, a negative tolerance,
-            a non-finite number, or a glued element that is not a number.
+            a non-finite number, or a glued element that is not a number; with a plan, a key it
+            does not hold, a tolerance, glue or row given here, or a context its entry does not
+            read (or a missing one it does).
         """
+        if self.plan is not None:
+            named = {"rtol": rtol, "atol": atol, "glue": glue, "row": row}
+            given = [name for name, v in named.items() if v is not None]
+            if given:
+                raise ValueError(
+                    f"{key}: {self.notebook} records by its plan, which gives the tolerance, "
+                    f"glue and rows: drop {', '.join(given)}= here"
+                )
+            recorded = {k: e["value"] for k, e in self.values.items()}
+            got = recordplan.resolve(self.plan, key, value, context, self.notebook, recorded)
+            rtol, atol, glue, row = got.tol.rtol, got.tol.atol_for(value), got.glue, got.rows
+        elif context is not None:
+            raise ValueError(f"{key}: context= is read by a plan; {self.notebook} has none")
+        texts, text_of = (got.texts, got.text_of) if self.plan is not None else (None, None)
+        return self._record(
+            key, value, rtol=rtol, atol=atol, glue=glue, row=row, texts=texts, text_of=text_of
+        )
+
+    def _record(
+        self,
+        key: str,
+        value: Any,
+        *,
+        rtol: float | None,
+        atol: float | None,
+        glue: Glue | None,
+        row: report.RowSpec | Sequence[report.RowSpec] | None,
+        texts: Mapping[str, str | float] | None = None,
+        text_of: Mapping[str, str] | None = None,
+    ) -> Any:
+        """:meth:`value` once its tolerance, glue, rows and texts (made of it, or of the keys
+        ``text_of`` gives by name) are known."""
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
         if _is_number(value) and rtol is None and atol is None:
@@ -155,6 +184,8 @@ class Recorder:
         rtol = check_float("rtol", 0.0 if rtol is None else rtol, low=0.0)
         atol = check_float("atol", 0.0 if atol is None else atol, low=0.0)
         entry = {"value": _plain(value), "rtol": rtol, "atol": atol}
+        for name, text in (texts or {}).items():
+            self._check_text(name, text)
         pasted, glued = {}, {}
         for name, index in ({glue: ()} if isinstance(glue, str) else dict(glue or {})).items():
             item = np.asarray(value)[index]
@@ -174,6 +205,8 @@ class Recorder:
         self.report += rows
         for name, item in pasted.items():
             self.paste(name, item)
+        for name, text in (texts or {}).items():
+            self.text(name, text, of=(text_of or {}).get(name, key))
         return value
 
     def text(self, name: str, text: str | float, *, of: str = "", why: str = "") -> str | float:
@@ -196,17 +229,20 @@ class Recorder:
             A glue name used twice, neither or both of ``of`` and ``why``, an ``of`` key not
             recorded, or a finite number (numbers go through :meth:`value`).
         """
-        if not isinstance(text, str) and not (isinstance(text, float) and np.isnan(text)):
-            raise ValueError(f"text {name!r} must be a str or NaN, got {text!r} (numbers: value)")
+        self._check_text(name, text)
         if bool(of) == bool(why):
             raise ValueError(f"text {name!r}: say what it is made of (of=) or why not (why=)")
         missing = [k.strip() for k in of.split(",") if of and k.strip() not in self.values]
         if missing:
             raise ValueError(f"text {name!r} is made of {missing}, which were not recorded")
-        self._check_name(name)
         self.glued[name] = {"text_of": of} if of else {"unchecked": why}
         self.paste(name, text)
         return text
+
+    def _check_text(self, name: str, text: Any) -> None:
+        if not isinstance(text, str) and not (isinstance(text, float) and np.isnan(text)):
+            raise ValueError(f"text {name!r} must be a str or NaN, got {text!r} (numbers: value)")
+        self._check_name(name)
 
     def _check_name(self, name: str) -> None:
         if not name or name in self.glued:
@@ -224,7 +260,7 @@ class Recorder:
         value : float
             The time (any unit the key names, e.g. ``_us``), finite and ≥ 0.
         glue : str, optional
-            Glue name for the prose.
+            Glue name for the prose; by default the one ``timing_glue`` gives the key, if any.
 
         Returns
         -------
@@ -239,6 +275,9 @@ class Recorder:
         """
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
+        if glue is not None and key in self.timing_glue:
+            raise ValueError(f"timing {key!r}: its glue is in the plan's TIMINGS: drop glue= here")
+        glue = self.timing_glue.get(key, glue)
         value = check_float(key, value, low=0.0)
         if glue is not None:
             self._check_name(glue)
@@ -248,72 +287,60 @@ class Recorder:
             self.paste(glue, value)
         return value
 
-    def claim(self, claim_id: str) -> str:
-        """Judge the registered claim ``claim_id`` (looked up in ``registry``) from this
-        notebook's records: its verdict word is recorded under ``claims.<claim_id>`` and its
-        report row added. Pages quote the word by id, never compose it.
+    def claim(self, *claim_ids: str) -> str | list[str]:
+        """Judge the registered claims ``claim_ids`` (looked up in ``registry``), in order, from
+        this notebook's records: each verdict word is recorded under ``claims.<claim_id>`` and
+        its report row added, as one call per claim would. Pages quote the word by id.
 
         Returns
         -------
-        str
-            The verdict word ("supported", "not supported", "mixed"; "holds", "does not hold").
+        str or list of str
+            The verdict word ("supported", "not supported", "mixed"; "holds", "does not hold"),
+            or the list of them for several ids.
 
         Raises
         ------
         KeyError
             An id the registry does not hold, or a value its rule reads that was not recorded.
         ValueError
-            A claim whose evidence another notebook records, one judged twice, or a recorder
-            made without a registry.
+            No id, a claim whose evidence another notebook records, one judged twice, or a
+            recorder made without a registry.
         """
-        if self.registry is None:
+        if self.registry is None or not claim_ids:
             raise ValueError(
-                f"claims: {self.notebook}'s Recorder was made without a claims registry; make it "
-                f"as Recorder(name, registry=claimlist.claim) to judge claim {claim_id!r}"
+                f"claims: {self.notebook} judges claims {claim_ids} by id with a registry: make "
+                f"the Recorder as Recorder(name, registry=claimlist.claim), name at least one id"
             )
-        spec = self.registry(claim_id)
-        if spec.page != self.notebook:
-            raise ValueError(f"claim {claim_id!r} is judged on {spec.page}, not on {self.notebook}")
-        verdict = claims.evaluate(spec, {**self.values, **self.timings})
-        self.value(f"{CLAIM_PREFIX}{claim_id}", verdict.word)
-        self.report.append({k: _plain(v) for k, v in verdict.row().items()})
-        return verdict.word
+        words = []
+        for claim_id in claim_ids:
+            spec = self.registry(claim_id)
+            if spec.page != self.notebook:
+                raise ValueError(
+                    f"claim {claim_id!r} is judged on {spec.page}, not {self.notebook}"
+                )
+            verdict = claims.evaluate(spec, {**self.values, **self.timings})
+            # a claim's key is its registry entry's, not the plan's
+            key = f"{CLAIM_PREFIX}{claim_id}"
+            self._record(key, verdict.word, rtol=None, atol=None, glue=None, row=None)
+            self.report.append({k: _plain(v) for k, v in verdict.row().items()})
+            words.append(verdict.word)
+        return words[0] if len(words) == 1 else words
 
-    def add_data(self, name: str, content: Any, *, about: str) -> None:
-        """Keep a table or a model for the book's data bundle (not a record: nothing compares it).
-
-        Parameters
-        ----------
-        name : str
-            File stem, letters, digits and ``_``; unique in this notebook.
-        content : pandas.DataFrame or mapping
-            A table (written as CSV, full precision, headers with their units) or a JSON-ready
-            mapping (written as JSON).
-        about : str
-            One line for the bundle's README: what the file holds, with units.
+    def save(self, folder: Path | None = None) -> Path:
+        """Write ``<folder>/<notebook>.json`` deterministically and return its path; the data
+        kept by :meth:`add_data` go to ``<folder>/data/<notebook>/`` with an ``index.json``.
 
         Raises
         ------
         ValueError
-            A name used twice or not of that form, an empty ``about``, or content of another kind.
+            With a plan, naming the keys of the plan (not optional) that were not recorded.
         """
-        if not re.fullmatch(r"[A-Za-z0-9_]+", name) or name in {
-            f.rsplit(".")[0] for f in self.data
-        }:
-            raise ValueError(f"data name {name!r} is not [A-Za-z0-9_]+ or was already used")
-        if not about.strip():
-            raise ValueError(f"data {name!r} needs a one-line description (about), got none")
-        if hasattr(content, "to_csv"):
-            self.data[f"{name}.csv"] = (content.to_csv(index=False, lineterminator="\n"), about)
-        elif isinstance(content, Mapping):
-            text = json.dumps(_plain_tree(content), indent=1, ensure_ascii=False) + "\n"
-            self.data[f"{name}.json"] = (text, about)
-        else:
-            raise ValueError(f"data {name!r} must be a DataFrame or a mapping, got {type(content)}")
-
-    def save(self, folder: Path | None = None) -> Path:
-        """Write ``<folder>/<notebook>.json`` deterministically and return its path; the data
-        kept by :meth:`add_data` go to ``<folder>/data/<notebook>/`` with an ``index.json``."""
+        missing = recordplan.unrecorded(self.plan, set(self.values)) if self.plan else []
+        if missing:
+            raise ValueError(
+                f"{self.notebook}: keys of its plan were not recorded: {', '.join(missing)} "
+                f"(record them, mark them optional=True, or drop them from the plan)"
+            )
         folder = Path(folder) if folder is not None else records_dir()
         folder.mkdir(parents=True, exist_ok=True)
         path = folder / f"{self.notebook}.json"

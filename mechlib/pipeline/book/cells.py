@@ -11,9 +11,11 @@ rule, what each cell shows:
   p-value row or column, reads "p < 1e-10", and a data frame's times have two significant
   digits (:mod:`mechlib.pipeline.book.pvalues`);
 * formatter directives (``# fmt: off``, ``# fmt: skip``) are dropped from every cell shown;
-* a cell whose every statement is bookkeeping — ``rec.value(...)``, ``rec.text(...)``,
-  ``rec.save()``, ``glue(..., display=False)``, prints of what those return, and the named
-  tolerances of the records (assignments to UPPER_CASE names) — is removed (``remove-cell``);
+* a cell whose every statement is bookkeeping — ``rec.value(...)`` (with or without
+  ``context=``), ``rec.text(...)``, ``rec.mapping(...)``, ``rec.skipped(...)``,
+  ``rec.constants()``, ``rec.save()``, ``glue(..., display=False)``, prints of what those
+  return, and the named tolerances of the records (assignments to UPPER_CASE names) — is
+  removed (``remove-cell``);
   its glued values still reach the text;
 * every other code cell is folded (``hide-input``): figures and tables stay visible;
 * outputs lose lines of known library warnings and have absolute machine paths neutralised;
@@ -45,7 +47,7 @@ KNOWN_WARNINGS = (
 )
 #: An absolute POSIX path with at least two components, not part of a longer word or URL.
 ABSOLUTE_PATH = re.compile(r"(?<![\w.~/:-])/(?:[\w.+-]+/)+[\w.+-]*")
-RECORDER_METHODS = frozenset({"value", "text", "save"})
+RECORDER_METHODS = frozenset({"value", "text", "save", "mapping", "skipped", "constants"})
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
 #: a formatter directive: a whole line ``# fmt: off`` or a trailing ``  # fmt: skip``
 _FMT_LINE = re.compile(r"^\s*#\s*fmt:\s*(off|on|skip)\s*$")

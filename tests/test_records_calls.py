@@ -1,0 +1,104 @@
+"""The recorder's calls that do several things at once: each records what the separate calls
+it replaces recorded."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from mechlib.reporting import claimrules, claims, plans
+from mechlib.reporting.records import Recorder, load
+
+SPECS = {
+    cid: claims.ClaimSpec(
+        cid, "ours", "Table 5", f"{ref} is small", "demo", (claimrules.at_most("p", ref, 1.0, "%"),)
+    )
+    for cid, ref in (("t.a", "a_pct"), ("t.b", "b_pct"), ("t.c", "a_pct"))
+}
+
+
+def judged(*calls: tuple[str, ...]) -> dict[str, Any]:
+    rec = Recorder("demo", paste=lambda name, value: None, registry=SPECS.__getitem__)
+    rec.value("a_pct", 0.5, rtol=1e-9)
+    rec.value("b_pct", 3.0, rtol=1e-9)
+    words = [rec.claim(*ids) for ids in calls]
+    return {"words": words, "values": rec.values, "report": rec.report}
+
+
+def test_several_claims_in_one_call_record_as_the_separate_calls() -> None:
+    one = judged(("t.a",), ("t.b",), ("t.c",))
+    many = judged(("t.a", "t.b", "t.c"))
+    assert one["values"] == many["values"] and one["report"] == many["report"]
+    assert one["words"] == ["holds", "does not hold", "holds"]
+    assert many["words"] == [["holds", "does not hold", "holds"]]
+    assert [r["claim"] for r in many["report"][-3:]] == ["t.a", "t.b", "t.c"]
+
+
+def test_claims_need_an_id_and_a_registry(tmp_path: Path) -> None:
+    rec = Recorder("demo", paste=lambda name, value: None, registry=SPECS.__getitem__)
+    with pytest.raises(ValueError, match="name at least one id"):
+        rec.claim()
+    with pytest.raises(ValueError, match=r"registry=claimlist\.claim"):
+        Recorder("demo").claim("t.a")
+    rec.value("a_pct", 0.5, rtol=1e-9)
+    assert rec.claim("t.a") == "holds"
+    assert load(rec.save(tmp_path))["values"]["claims.t.a"]["value"] == "holds"
+
+
+def test_data_described_by_the_plan_as_by_the_call(tmp_path: Path) -> None:
+    table = pd.DataFrame({"runs": [16, 32], "err [%]": [1.5, 0.25]})
+    n = 12
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.add_data("curves", table, about=f"learning curves over {n} held-out runs")
+    literal.add_data("model", {"coef": np.eye(2)}, about="the model")
+    data = {
+        "curves": lambda c: f"learning curves over {c['n']} held-out runs",
+        "model": "the model",
+    }
+    rec = Recorder("demo", paste=lambda name, value: None, about=data)
+    rec.add_data("curves", table, context={"n": n})
+    rec.add_data("model", {"coef": np.eye(2)})
+    assert rec.data == literal.data
+    one, two = literal.save(tmp_path / "a"), rec.save(tmp_path / "b")
+    index = Path("data") / "demo" / "index.json"
+    assert (one.parent / index).read_text() == (two.parent / index).read_text()
+
+
+def test_data_descriptions_are_given_once() -> None:
+    rec = Recorder("demo", about={"m": "the model", "c": lambda c: f"{c['n']} runs"})
+    with pytest.raises(ValueError, match="both here and in the plan's DATA"):
+        rec.add_data("m", {}, about="x")
+    with pytest.raises(ValueError, match="nowhere"):
+        rec.add_data("other", {})
+    with pytest.raises(ValueError, match="read by an about"):
+        rec.add_data("m", {}, context={"n": 1})
+    with pytest.raises(ValueError, match=r"reads 'n' from context=\[\]"):
+        rec.add_data("c", {})
+    assert rec.data == {}
+
+
+def test_timing_glue_from_the_plan_as_by_the_call() -> None:
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.timing("realtime.best_us", 3.5, glue="t_best")
+    literal.timing("solve.seconds", 2.0)
+    rec = Recorder(
+        "demo", paste=lambda name, value: None, timing_glue={"realtime.best_us": "t_best"}
+    )
+    rec.timing("realtime.best_us", 3.5)
+    rec.timing("solve.seconds", 2.0)
+    assert (rec.timings, rec.glued) == (literal.timings, literal.glued)
+    again = Recorder("demo", timing_glue={"realtime.best_us": "t_best"})
+    with pytest.raises(ValueError, match="drop glue= here"):
+        again.timing("realtime.best_us", 1.0, glue="t")
+
+
+def test_a_chapters_recorder_carries_its_plan_data_and_timings() -> None:
+    rec = plans.recorder("published_doe", paste=lambda name, value: None)
+    assert rec.plan is plans.load("published_doe")
+    assert rec.notebook == "published_doe" and rec.about == {} and rec.timing_glue == {}
+    with pytest.raises(ValueError, match="no record plan"):
+        plans.recorder("no_such_notebook")
