@@ -235,3 +235,25 @@ def test_the_key_of_a_task_follows_its_fingerprint() -> None:
     one = task_key(spec, "nonlinear", forces, 2, "0" * 16)
     assert one == task_key(spec, "nonlinear", forces.copy(), 2, "0" * 16)
     assert one != task_key(spec, "nonlinear", forces, 2, "1" * 16)
+
+
+def test_keyword_only_marks_and_local_annotations_are_code() -> None:
+    kw_only = "class C:\n    _: KW_ONLY\n    x: int = 1\n"
+    field = "class C:\n    _: int\n    x: int = 1\n"
+    assert cd.code_digest(kw_only) != cd.code_digest(field)
+    # a bare annotation makes a name local to its function (reading it then fails)
+    local = "X = 1\n\n\ndef f():\n    X: int\n    return X\n"
+    assert cd.code_digest(local) != cd.code_digest(local.replace("    X: int\n", ""))
+
+
+def test_every_package_that_holds_a_module_is_in_the_closure(fingerprint_of) -> None:
+    files = {
+        "synth/__init__.py": PACKAGE["synth/__init__.py"],
+        "synth/deep/__init__.py": "SCALE = 2.0\n",  # runs when anything below it is imported
+        "synth/deep/er/__init__.py": '"""Only its purpose."""\n',
+        "synth/deep/er/task.py": "def run(x):\n    return x\n",
+    }
+    base, closure = fingerprint_of(files, task="synth.deep.er.task")
+    assert {"synth", "synth.deep", "synth.deep.er"} <= set(closure)
+    edited = {**files, "synth/deep/__init__.py": "SCALE = 3.0\n"}
+    assert fingerprint_of(edited, task="synth.deep.er.task")[0] != base

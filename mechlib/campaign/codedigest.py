@@ -30,8 +30,9 @@ import importlib.util
 
 #: the package whose imports are named by their code, not their path
 PACKAGE = "mechlib"
-#: annotations that change what a dataclass makes of a class attribute
-DATACLASS_MARKERS = ("ClassVar", "InitVar")
+#: annotations that change what a dataclass makes of a class attribute (``_: KW_ONLY`` makes the
+#: fields after it keyword-only)
+DATACLASS_MARKERS = ("ClassVar", "InitVar", "KW_ONLY")
 
 
 def is_typing_block(node: ast.AST) -> bool:
@@ -246,10 +247,12 @@ class _Normaliser(ast.NodeTransformer):
         return node
 
     def visit_AnnAssign(self, node: ast.AnnAssign) -> ast.AST | None:
-        if not self.in_class:  # ``x: T = v`` binds as ``x = v``; ``x: T`` binds nothing
-            if node.value is None:
-                return None
-            return self.visit(ast.Assign(targets=[node.target], value=node.value))
+        if not self.in_class:  # ``x: T = v`` binds as ``x = v``; a bare ``x: T`` binds nothing
+            if node.value is not None:
+                return self.visit(ast.Assign(targets=[node.target], value=node.value))
+            # but makes ``x`` local in a function: kept, without its annotation
+            node.annotation = ast.Name(id="", ctx=ast.Load())
+            return node
         # in a class body an annotation makes a dataclass field (unlike ``x = v``): kept as a mark
         marker = next((m for m in DATACLASS_MARKERS if m in ast.unparse(node.annotation)), "")
         node.annotation = ast.Name(id=marker, ctx=ast.Load())

@@ -39,8 +39,8 @@ def model_modules(task_modules: tuple[str, ...]) -> tuple[str, ...]:
             continue
         seen.add(name)
         spec = importlib.util.find_spec(name)
-        if spec.parent and spec.parent != name:
-            todo.append(spec.parent)
+        # importing a module runs the __init__ of every package that holds it
+        todo.extend(name.rsplit(".", k)[0] for k in range(1, name.count(".") + 1))
         for node in _imports(ast.parse(Path(spec.origin).read_text())):
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]

@@ -29,9 +29,9 @@ manifest keeps one per family (:func:`fingerprints`); the primary family's is al
 ``fingerprint``. A store whose primary fingerprint is not the current code's is refused; its
 entries of another family whose code changed since are not seeded (the build computes them
 again). The store names no family: a task's family and bounds come from its key text through the
-registry. Format 4 (cache format 4) keys on the
-code's normalised syntax trees, so a docstring or a comment edited keeps the store; a store of
-an older format is refused by its version.
+registry. Format 5 (cache format 5) keys on the
+code's normalised syntax trees, each module's digest covering what it imports, so a docstring or
+a comment edited keeps the store; a store of an older format is refused by its version.
 """
 
 from __future__ import annotations

@@ -105,10 +105,9 @@ def task_key(
     steps: int,
     fingerprint: str,
 ) -> str:
-    """The cache key of a task: a digest of the cache format ``version``, the code
+    """The cache key of a task: a digest of the cache format (:data:`CACHE_VERSION`), the code
     ``fingerprint`` (:func:`model_code_fingerprint`), the model ``spec`` (:meth:`ModelSpec.key`
-    text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes
-    (:data:`CACHE_VERSION`)."""
+    text), the ``kind``, the load ``steps`` and the ``forces`` (rows, 6) [N] as float64 bytes."""
     h = hashlib.sha256()
     h.update(f"{CACHE_VERSION}|{fingerprint}|{spec}|{kind}|{steps}|".encode())
     h.update(np.ascontiguousarray(forces, dtype=np.float64).tobytes())

@@ -100,7 +100,7 @@ def polynomial_force(
     Parameters
     ----------
     tangent : SVKTangent
-        The model's batched kernels (gradients ``_grad``, weights ``_weight``, Lamé constants).
+        The model's batched kernels (its ``gradients``, ``weights``, ``lame`` and ``shear``).
     basis : ndarray (n_dofs, n)
         Reduced basis.
     cells : ndarray of int (m,)
