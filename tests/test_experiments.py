@@ -392,3 +392,15 @@ def test_the_models_size_is_cached_like_a_run(tmp_path, monkeypatch) -> None:
     assert ex.model_size(SPEC, tmp_path) == want
     with pytest.raises(ex.ExperimentError, match="builds no model"):  # no cache: built
         ex.model_size(SPEC, None)
+
+
+def test_a_worker_with_other_fe_code_refuses_the_task(monkeypatch) -> None:
+    """A task is solved only where the FE code is the code its key names (a Dask worker on
+    another commit would otherwise cache its results under this code's keys)."""
+    monkeypatch.setattr(ex, "_task", lambda *a: pytest.fail("solved by other code"))
+    spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
+    with pytest.raises(ex.CodeMismatchError, match=r"not the submitting process's \(0{16}\)"):
+        ex._same_code_task("0" * 16, spec, "linear", np.zeros((1, 6)), 1)
+    here = ex.model_code_fingerprint(spec.TASK_MODULES)
+    monkeypatch.setattr(ex, "_task", lambda *a: np.ones((1, 6)))
+    assert ex._same_code_task(here, spec, "linear", np.zeros((1, 6)), 1).shape == (1, 6)

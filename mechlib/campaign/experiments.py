@@ -109,6 +109,25 @@ def _task(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     return run_task(spec, kind, forces, steps)
 
 
+class CodeMismatchError(RuntimeError):
+    """A worker's FE code is not the code whose fingerprint the task's key holds."""
+
+
+def _same_code_task(
+    fingerprint: str, spec: Spec, kind: str, forces: np.ndarray, steps: int
+) -> np.ndarray:
+    """:func:`_task`, refused where the worker's FE code (its fingerprint, computed once per
+    process from the sources it finds) is not the submitting process's: a result is cached
+    under a key that names the code that computed it."""
+    here = model_code_fingerprint(spec.TASK_MODULES)
+    if here != fingerprint:
+        raise CodeMismatchError(
+            f"the worker's FE code (fingerprint {here}) is not the submitting process's "
+            f"({fingerprint}): run the same commit on every worker"
+        )
+    return _task(spec, kind, forces, steps)
+
+
 def task_poses(spec: Spec, kind: str, forces: np.ndarray, steps: int) -> np.ndarray:
     """What one task of ``kind`` (:data:`TASK_KINDS`) computes and caches, computed now: per row
     of ``forces``, ``RESULT_COLUMNS[kind]`` columns (the poses; a non-linear run's
@@ -203,7 +222,8 @@ def run_experiments(
                      cache_dir, bar=progress)  # fmt: skip
     pending: dict[cf.Future, np.ndarray] = {}
     for rows, path in todo:
-        fut = pool.submit(_task, spec, kind, d[rows], steps)
+        code = model_code_fingerprint(spec.TASK_MODULES)
+        fut = pool.submit(_same_code_task, code, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(cache_result, path, len(rows)))
             log_task(path, spec.key(), kind, d[rows], steps, hit=False)
