@@ -91,6 +91,14 @@ def test_computation_is_not_bookkeeping(source: str) -> None:
     assert not cells.is_bookkeeping(source, {"rec"})
 
 
+def test_the_recorder_is_found_however_the_notebook_builds_it() -> None:
+    sources = ['r = plans.recorder("x", registry=claimlist.claim)', 'q = Recorder("y")', "x = 2"]
+    assert cells.recorder_names(sources) == {"r", "q"}
+    assert cells.recorder_names(['r = recorder("x")', "x = f(1)"]) == {"r"}
+    assert cells.recorder_names(["r = record()", "x = f(1)"]) == {"rec"}  # none: the default
+    assert cells.is_bookkeeping('r.value("a", 1)', cells.recorder_names(sources[:1]))
+
+
 def _code(source: str, tags: list[str] | None = None, outputs: list | None = None) -> dict:
     return {
         "cell_type": "code",

@@ -100,5 +100,40 @@ def test_a_chapters_recorder_carries_its_plan_data_and_timings() -> None:
     rec = plans.recorder("published_doe", paste=lambda name, value: None)
     assert rec.plan is plans.load("published_doe")
     assert rec.notebook == "published_doe" and rec.about == {} and rec.timing_glue == {}
+    assert rec.unchecked == {}
     with pytest.raises(ValueError, match="no record plan"):
         plans.recorder("no_such_notebook")
+
+
+def test_timing_glue_is_the_plans_where_there_is_a_plan() -> None:
+    rec = Recorder("demo", plan={}, timing_glue={"solve.seconds": "t_solve"})
+    with pytest.raises(ValueError, match=r"timing 'other\.seconds': demo records by its plan"):
+        rec.timing("other.seconds", 1.0, glue="t_other")
+    assert rec.timings == {} and rec.glued == {}
+    # the chapters that glued timings in the call now name the glue in TIMINGS, the same names
+    assert plans.recorder("virtual_experiments").timing_glue == {
+        "latency.st_forward_us": "latency_one_us",
+        "latency.fe_case_ms": "latency_fe_ms",
+    }
+    timing_glue = plans.recorder("fivebar_identification").timing_glue
+    assert timing_glue == {"selection.active_over_plain": "active_ratio"}
+
+
+def test_a_reason_a_text_is_not_checked_said_once_in_the_plan_as_in_each_call() -> None:
+    why = "a timing on the machine that built the page (not recorded)"
+    literal = Recorder("demo", paste=lambda name, value: None)
+    literal.text("run_s", "2.5", why=why)
+    literal.text("rom_us", "40", why=why)
+    rec = Recorder("demo", paste=lambda name, value: None, unchecked=dict.fromkeys(["run_s"], why))
+    rec.text("run_s", "2.5")
+    rec.text("rom_us", "40", why=why)  # a name the plan does not give: as before
+    assert rec.glued == literal.glued == {"run_s": {"unchecked": why}, "rom_us": {"unchecked": why}}
+    with pytest.raises(ValueError, match=r"text 'run_s': the plan's UNCHECKED .* drop why= here"):
+        Recorder("demo", unchecked={"run_s": why}).text("run_s", "2.5", why="other")
+    with pytest.raises(ValueError, match="drop of= here"):
+        Recorder("demo", unchecked={"run_s": why}).text("run_s", "2.5", of="a.key")
+    with pytest.raises(ValueError, match="made of"):
+        rec.text("other", "1")  # neither of= nor why=, nor a reason in the plan
+    # the meta-model page's timing texts, each with the reason it wrote in every call before
+    unchecked = plans.recorder("nonlinear_metamodels").unchecked
+    assert set(unchecked.values()) == {why} and {"full_run_s", "rt_newton_share"} <= set(unchecked)

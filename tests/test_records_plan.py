@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+import types
 from pathlib import Path
 
 import numpy as np
@@ -101,6 +103,44 @@ def test_a_plan_entry_and_a_plan_are_checked() -> None:
         plans.load("no_such_notebook")
     with pytest.raises(ValueError, match="notebook's name"):
         plans.load("../x")
+
+
+def test_an_entry_refuses_texts_and_glue_of_another_kind() -> None:
+    with pytest.raises(TypeError, match=r"Entry texts map glue names to .*: 3"):
+        plans.Entry(tol=EXACT, texts={3: lambda v: "a"})  # type: ignore[dict-item]
+    with pytest.raises(TypeError, match=r"Entry texts map glue names to .*: 'label'"):
+        plans.Entry(tol=EXACT, texts={"label": "not a function"})  # type: ignore[dict-item]
+    with pytest.raises(TypeError, match=r"Entry texts map glue names to .*: ''"):
+        plans.Entry(tol=EXACT, texts={"": lambda v: "a"})
+    with pytest.raises(ValueError, match=r"glue names \['n'\] twice \(in glue and in texts\)"):
+        plans.Entry(tol=EXACT, glue="n", texts={"n": lambda v: "a"})
+    with pytest.raises(TypeError, match="MadeOf keys must be a tuple of record keys"):
+        plans.MadeOf(keys=["a.b"], text=lambda values: "a")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="MadeOf text must be text"):
+        plans.MadeOf(keys=("a.b",), text="a")  # type: ignore[arg-type]
+
+
+def test_a_plan_that_is_no_mapping_of_keys_to_entries_is_refused_naming_it() -> None:
+    with pytest.raises(TypeError, match="demo's plan must be a mapping key -> Entry, got <class"):
+        Recorder("demo", plan=[("a.count", PLAN["a.count"])])  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="demo's plan: 3 must be a str mapped to an Entry"):
+        Recorder("demo", plan={3: PLAN["a.count"]})  # type: ignore[dict-item]
+    with pytest.raises(TypeError, match=r"'a\.count' must be a str mapped to an Entry"):
+        Recorder("demo", plan={"a.count": PLAN["a.count"].tol})  # type: ignore[dict-item]
+
+
+def test_a_plan_is_loaded_by_a_notebooks_name_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    # a module starting with _ holds what several plans share, not a plan
+    with pytest.raises(ValueError, match="got '_virtual_experiments_rows'"):
+        plans.load("_virtual_experiments_rows")
+    for name in ("Published_doe", "published-doe", ""):
+        with pytest.raises(ValueError, match=f"notebook's name .*, got '{name}'"):
+            plans.recorder(name)
+    helper = types.ModuleType(f"{plans.__name__}.shared_rows")  # a module without PLAN
+    monkeypatch.setitem(sys.modules, helper.__name__, helper)
+    with pytest.raises(ValueError, match=r"plans\.shared_rows holds no PLAN"):
+        plans.load("shared_rows")
+    assert plans.load("published_doe") is plans.recorder("published_doe").plan
 
 
 def test_a_tolerance_class_stores_the_literal_numbers() -> None:
@@ -244,3 +284,14 @@ def test_each_named_tolerance_is_defined_in_one_module_and_reexported() -> None:
         for n, m in owners.items()
     )
     assert "ROUNDOFF" in owners and "EXACT" in owners
+
+
+def test_the_levels_row_quotes_the_designs_ranges_as_the_page_wrote_them() -> None:
+    span = {"Table 2": (-1.0, 1.0), "Table 4": (-0.5, 1.0)}
+    by_hand = "; ".join(  # the text the page built and passed before
+        f"{name}: {lo:g} to {hi:g} N".replace("-", "−") for name, (lo, hi) in span.items()
+    )
+    rec = plans.recorder("published_doe", paste=lambda name, value: None)
+    rec.value("table1.designs_span_the_levels", False, context={"span": span})
+    assert rec.report[0]["ours"] == f"level ranges: {by_hand}"
+    assert by_hand == "Table 2: −1 to 1 N; Table 4: −0.5 to 1 N"

@@ -13,12 +13,13 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from mechlib.campaign import executors
 from mechlib.campaign.experiments import FailedRun, run_keeping_failures
 from mechlib.compliant.spec import MechanismSpec
 from mechlib.parallelogram import published as pub
-from mechlib.parallelogram.comparison import applied_loads, as_rows, fe_poses
+from mechlib.parallelogram.comparison import SMALL_A_Y, applied_loads, as_rows, fe_poses, worst_by
 from mechlib.params import check_matrix
 
 
@@ -76,6 +77,73 @@ def computed_rows(lines: object, corners: bool = True) -> np.ndarray:
     sweep = sweep[np.sort(first)]
     sweep = sweep[np.lexsort((sweep[:, 1], sweep[:, 2], sweep[:, 0]))]
     return sweep, applied_loads(sweep), fe_poses(sweep)
+
+
+#: the columns of :func:`sweep_table`: the loads, then (u_x/L, u_y/L, φ) of each model
+SWEEP_COLUMNS = (
+    "A_x [-]", "A_y [-]", "B applied [-]",
+    "published u_x/L [-]", "published u_y/L [-]", "published phi rigid [rad]",
+    "our FE u_x/L [-]", "our FE u_y/L [-]", "our FE phi [rad]",
+    "elastica u_x/L [-]", "elastica u_y/L [-]", "elastica phi [rad]",
+)  # fmt: skip
+
+
+def sweep_table(loads: object, published: object, ours: object, elastica: object) -> pd.DataFrame:
+    """The sweep's rows as the data bundle's table: the loads applied (A_x, A_y, B), then the
+    published FE's, our FE's and the elastica's (u_x/L, u_y/L, φ [rad]) at each, columns
+    :data:`SWEEP_COLUMNS`.
+
+    Raises
+    ------
+    ValueError
+        Any of the four not an (n, 3) array of numbers, or their row counts differing (a pose
+        that is not finite is written as an empty cell).
+    """
+    named = {"loads": loads, "published": published, "ours": ours, "elastica": elastica}
+    parts = {name: np.asarray(a, dtype=float) for name, a in named.items()}
+    shapes = {name: a.shape for name, a in parts.items()}
+    if any(len(s) != 2 or s[1] != 3 for s in shapes.values()) or len(set(shapes.values())) > 1:
+        raise ValueError(f"loads, published, ours and elastica must be (n, 3) arrays, got {shapes}")
+    return pd.DataFrame(np.hstack(list(parts.values())), columns=list(SWEEP_COLUMNS))
+
+
+def largest_by_level(loads: object, shares: object) -> dict[str, np.ndarray | list[float]]:
+    """How the difference of our FE from the published one grows with the loads.
+
+    Parameters
+    ----------
+    loads : array_like, shape (n, 3)
+        The loads (A_x, A_y, B) of the rows.
+    shares : array_like, shape (n, 3)
+        Each row's |our FE − published| per component, % of the published full scale
+        (:func:`~.comparison.shares_pct`).
+
+    Returns
+    -------
+    dict
+        ``a_x_levels`` and ``by_a_x_pct``: each A_x and the largest share of each component
+        there (:func:`~.comparison.worst_by`); ``a_y_levels`` and ``by_a_y_pct``: the same for
+        |A_y|; ``small_and_top_pct``: the largest share of any component up to |A_y| =
+        :data:`~.comparison.SMALL_A_Y`, the largest at the largest |A_y|, and that |A_y|.
+
+    Raises
+    ------
+    ValueError
+        Loads not an (n, 3) array, shares of other rows, or no row with |A_y| ≤ SMALL_A_Y.
+    """
+    rows = as_rows("loads", loads)
+    ax_levels, by_ax = worst_by(rows[:, 0], shares)
+    ay_levels, by_ay = worst_by(np.abs(rows[:, 1]), shares)
+    small = ay_levels <= SMALL_A_Y
+    if not small.any():
+        raise ValueError(f"loads must hold a row with |A_y| <= {SMALL_A_Y:g}, got {ay_levels}")
+    return {
+        "a_x_levels": ax_levels,
+        "by_a_x_pct": by_ax,
+        "a_y_levels": ay_levels,
+        "by_a_y_pct": by_ay,
+        "small_and_top_pct": [by_ay[small].max(), by_ay[-1].max(), ay_levels[-1]],
+    }
 
 
 def convergence_pct(values: object) -> np.ndarray:

@@ -79,6 +79,9 @@ class Recorder(RecordHelpers):
         ``about(context)``, for :meth:`add_data` (:func:`mechlib.reporting.plans.recorder`).
     timing_glue : mapping of str to str, optional
         The plan module's ``TIMINGS``: the glue name of a timing's key, for :meth:`timing`.
+    unchecked : mapping of str to str, optional
+        The plan module's ``UNCHECKED``: why the text glued under a name is not checked (a
+        reason several texts share, such as a timing's, written once), for :meth:`text`.
     """
 
     notebook: str
@@ -92,6 +95,7 @@ class Recorder(RecordHelpers):
     plan: recordplan.Plan | None = field(default=None, repr=False)
     about: Mapping[str, str | Callable[[Mapping[str, Any]], str]] = field(default_factory=dict)
     timing_glue: Mapping[str, str] = field(default_factory=dict, repr=False)
+    unchecked: Mapping[str, str] = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         if self.plan is not None:
@@ -221,15 +225,24 @@ class Recorder(RecordHelpers):
         of : str
             The record key(s) the text is made from (comma-separated), recorded before.
         why : str
-            Otherwise, why the text is not checked (e.g. a machine-dependent timing).
+            Otherwise, why the text is not checked (e.g. a machine-dependent timing); by
+            default the reason ``unchecked`` gives the name, if any.
 
         Raises
         ------
         ValueError
-            A glue name used twice, neither or both of ``of`` and ``why``, an ``of`` key not
-            recorded, or a finite number (numbers go through :meth:`value`).
+            A glue name used twice, neither or both of ``of`` and ``why`` (the plan's reason
+            counts as ``why``), an ``of`` key not recorded, or a finite number (numbers go
+            through :meth:`value`).
         """
         self._check_text(name, text)
+        if name in self.unchecked:
+            if of or why:
+                raise ValueError(
+                    f"text {name!r}: the plan's UNCHECKED says why it is not checked: drop "
+                    f"{'of' if of else 'why'}= here"
+                )
+            why = self.unchecked[name]
         if bool(of) == bool(why):
             raise ValueError(f"text {name!r}: say what it is made of (of=) or why not (why=)")
         missing = [k.strip() for k in of.split(",") if of and k.strip() not in self.values]
@@ -260,7 +273,8 @@ class Recorder(RecordHelpers):
         value : float
             The time (any unit the key names, e.g. ``_us``), finite and ≥ 0.
         glue : str, optional
-            Glue name for the prose; by default the one ``timing_glue`` gives the key, if any.
+            Glue name for the prose, without a plan; with one, the plan module's ``TIMINGS``
+            give it (``timing_glue``).
 
         Returns
         -------
@@ -270,11 +284,16 @@ class Recorder(RecordHelpers):
         Raises
         ------
         ValueError
-            A key already recorded (as a value or a timing), a glue name used twice, or a value
-            that is not a finite number ≥ 0.
+            A key already recorded (as a value or a timing), a glue name used twice or given
+            here with a plan, or a value that is not a finite number ≥ 0.
         """
         if key in self.values or key in self.timings:
             raise ValueError(f"record key {key!r} was already recorded in {self.notebook}")
+        if glue is not None and self.plan is not None:
+            raise ValueError(
+                f"timing {key!r}: {self.notebook} records by its plan: give its glue in the plan "
+                f"module's TIMINGS, drop glue= here"
+            )
         if glue is not None and key in self.timing_glue:
             raise ValueError(f"timing {key!r}: its glue is in the plan's TIMINGS: drop glue= here")
         glue = self.timing_glue.get(key, glue)

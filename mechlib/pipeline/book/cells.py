@@ -58,7 +58,8 @@ _FENCE = re.compile(r"^\s*(```|~~~)")
 
 
 def recorder_names(sources: Iterable[str]) -> set[str]:
-    """Names bound to ``Recorder(...)`` in any cell (``{"rec"}`` if none is found)."""
+    """Names bound to ``Recorder(...)`` or ``plans.recorder(...)`` in any cell (``{"rec"}`` if
+    none is found)."""
     names: set[str] = set()
     for source in sources:
         try:
@@ -69,11 +70,16 @@ def recorder_names(sources: Iterable[str]) -> set[str]:
             if (
                 isinstance(node, ast.Assign)
                 and isinstance(node.value, ast.Call)
-                and isinstance(node.value.func, ast.Name)
-                and node.value.func.id == "Recorder"
+                and _makes_recorder(node.value.func)
             ):
                 names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
     return names or {"rec"}
+
+
+def _makes_recorder(func: ast.expr) -> bool:
+    if isinstance(func, ast.Name):  # Recorder(...), or recorder(...) imported from plans
+        return func.id in ("Recorder", "recorder")
+    return isinstance(func, ast.Attribute) and func.attr == "recorder"  # plans.recorder(...)
 
 
 def _bookkeeping_call(node: ast.AST, recorders: set[str]) -> bool:

@@ -161,3 +161,6 @@ PLAN: dict[str, Entry] = {
         ),
     ),
 }
+
+#: the timings (machine-dependent, not compared) and their glue names
+TIMINGS = {"selection.active_over_plain": "active_ratio"}

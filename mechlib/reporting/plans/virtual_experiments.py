@@ -296,3 +296,9 @@ NL_EQ6 = (
     "nl_designs.eq6_interactions_over_linear",
     *NL_VS_EQ6,
 )
+
+#: the timings (machine-dependent, not compared) and their glue names
+TIMINGS = {
+    "latency.st_forward_us": "latency_one_us",
+    "latency.fe_case_ms": "latency_fe_ms",
+}

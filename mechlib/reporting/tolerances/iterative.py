@@ -23,19 +23,15 @@ SOLVER_NEAR_ZERO = Tolerance(
 )
 SOLVER_DERIVED = Tolerance(
     rtol=1e-3,
-    why="a small quantity derived from values known to a solver's tolerance (1e-6): a relative "
-    "difference of ~1e-3 moves by up to ~1e-4 of itself",
+    why="largest relative differences of fits from published numbers (2e-4 to 6.1e-3), one of "
+    "them made of a penalized solver's coefficients, known to its tolerance (1e-6): that moves "
+    "its 6.1e-3 by up to 1e-6, 1.6e-4 of itself, inside 1e-3; those of the least-squares fits "
+    "move by round-off only",
 )
 ITERATIVE = Tolerance(
     rtol=1e-6,
     why="a fit or an estimate iterated to a stopping tolerance of 1e-8 or below (Gauss–Newton, "
     "Levenberg–Marquardt, a seeded Monte Carlo): another kernel stops within 1e-6 of it",
-)
-ITERATIVE_PCT = Tolerance(
-    rtol=1e-6,
-    atol=1e-9,
-    why="as ITERATIVE, for a percentage: an absolute floor of 1e-9 percentage points for "
-    "values that are 0 or near it",
 )
 ITERATIVE_ABS = Tolerance(
     rtol=1e-6,
@@ -62,9 +58,10 @@ CONDITIONING = Tolerance(
 
 BISECTION = Tolerance(
     atol=1e-6,
-    why="a bisection stopped at an interval of 1e-5 (the numeric MIW, in m): its steps are "
-    "comparisons of round-off-exact kinematics, so a re-run repeats them; 1e-6 absolute allows "
-    "a comparison that flips at round-off",
+    why="a bisection and a golden-section search stopped at intervals of 1e-5 (the numeric MIW, "
+    "in m): their steps are comparisons of round-off-exact kinematics, so a re-run repeats every "
+    "one and returns the same numbers; a comparison that flipped would move the result by 3.8e-6 "
+    "or more (a golden-section step; 5e-6, a bisection step), beyond 1e-6, and be reported",
 )
 SOLVERS_AGREE = Tolerance(
     atol=1e-8,
