@@ -244,3 +244,24 @@ def test_a_store_holds_both_mechanisms_and_seeds_each_by_its_own_code(built, tmp
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(st, "fingerprints", lambda: now)
         assert st.seed_cache(folder, tmp_path / "fresh2") == 3
+
+
+def test_a_stopped_regeneration_carries_the_previous_store_s_other_tasks(built, tmp_path) -> None:
+    from dataclasses import replace
+
+    from mechlib.campaign.carry import carry
+
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    old_key = "f" * 32  # keys of another format: the tasks are matched by their inputs
+    previous = [replace(e, key=old_key[:-1] + str(i)) for i, e in enumerate(entries)]
+    folder = st.write_store(previous, tmp_path / "old", {"commit": "84391a6"})
+    carried, record = carry(entries[:1], folder)  # the regeneration solved the first only
+    assert record["entries"] == len(entries) - 1 >= 1 and record["agreed"] == 1
+    assert record["from"]["commit"] == "84391a6"
+    assert [c.key for c in carried] == [e.key for e in entries[1:]]  # the current keys
+    for a, b in zip(carried, entries[1:], strict=True):
+        np.testing.assert_array_equal(a.results, b.results)
+    moved = replace(entries[0], results=entries[0].results + 1e-12)
+    with pytest.raises(st.StoreError, match=f"task {moved.key} .* differs from the previous"):
+        carry([moved], folder)

@@ -172,6 +172,15 @@ def _pack(args: argparse.Namespace) -> int:
         # whether those seconds solved every run (an empty FE cache) or resumed from a cache
         "from_empty": args.from_empty,
     }
+    if args.carry is not None:
+        from mechlib.campaign.carry import carry
+
+        carried, provenance["carried"] = carry(entries, args.carry)
+        print(
+            f"store: {len(carried)} FE tasks carried from {args.carry} (the "
+            f"{provenance['carried']['agreed']} both hold agree bit for bit)"
+        )
+        entries = entries + carried
     folder = store.write_store(entries, args.store, provenance)
     m = store.read_manifest(folder)
     print(f"store: {len(entries)} FE tasks ({m['runs']}) written to {folder}")
@@ -235,6 +244,13 @@ def parser() -> argparse.ArgumentParser:
     pack.add_argument("--store", type=Path, required=True)
     pack.add_argument("--seconds", type=float, default=None, help="wall time of the build")
     pack.add_argument("--workers", type=str, default=None, help="where it ran")
+    pack.add_argument(
+        "--carry",
+        type=Path,
+        default=None,
+        help="a previous store whose tasks the build did not solve are carried (a stopped "
+        "regeneration; refused if a task both hold differs)",
+    )
     pack.add_argument(
         "--from-empty", action="store_true", help="the build started from an empty FE cache"
     )

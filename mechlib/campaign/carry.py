@@ -1,0 +1,86 @@
+"""Carrying a previous store's tasks into a new one whose regeneration was cut short.
+
+A regeneration from an empty FE cache solves every task again with the current code. When it is
+stopped before the end (a session's time, a node's walltime), :func:`carry` completes what it
+solved with the previous store's other tasks, under the current keys, and says so — only if every
+task that both hold is bit for bit the same in both, and with a record for the manifest
+(``carried``): how many were carried, how many agreed, and the previous store's commit, format and
+fingerprints. A later regeneration that solves them replaces the record (:mod:`.store`).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from mechlib.campaign import store
+from mechlib.campaign.storefiles import Entry, StoreError, read_arrays
+from mechlib.campaign.taskcache import task_key
+
+#: what the manifest says of carried tasks
+WHY = (
+    "the regeneration from an empty FE cache was stopped before it solved these tasks; every task "
+    "it solved that the previous store also held is bit for bit the previous store's (agreed), "
+    "so these are carried under the current keys until a regeneration solves them"
+)
+
+
+def _task(e: Entry) -> tuple[str, str, int, bytes]:
+    return e.spec, e.kind, e.steps, np.ascontiguousarray(e.forces, dtype=np.float64).tobytes()
+
+
+def carry(entries: list[Entry], folder: Path) -> tuple[list[Entry], dict]:
+    """The tasks of the store ``folder`` (any format) that ``entries`` lacks, keyed for the
+    current code, and the manifest's record of them.
+
+    Parameters
+    ----------
+    entries : list of Entry
+        The tasks a (stopped) regeneration solved.
+    folder : Path
+        The previous store.
+
+    Returns
+    -------
+    carried : list of Entry
+        The previous store's other tasks, each under its current key.
+    record : dict
+        ``entries`` (how many carried), ``agreed`` (tasks in both, all identical), ``from`` (the
+        previous store's commit, format version and fingerprints) and ``why``.
+
+    Raises
+    ------
+    StoreError
+        If a task in both differs in a bit (nothing is carried then), or the previous store
+        cannot be read.
+    """
+    folder = Path(folder)
+    try:
+        manifest = json.loads((folder / store.MANIFEST).read_text())
+    except (OSError, ValueError) as err:
+        raise StoreError(f"no readable store manifest in {folder} ({err})") from err
+    solved = {_task(e): e for e in entries}
+    agreed, carried = 0, []
+    fingerprints = store.fingerprints()
+    for e in read_arrays(folder, manifest):
+        new = solved.get(_task(e))
+        if new is None:
+            key = task_key(e.spec, e.kind, e.forces, e.steps, fingerprints[store.family(e.spec)])
+            carried.append(Entry(key, e.spec, e.kind, e.steps, e.forces, e.results))
+        elif np.array_equal(new.results, e.results):
+            agreed += 1
+        else:
+            raise StoreError(
+                f"task {new.key} ({e.kind}) differs from the previous store's {e.key}: a store "
+                "whose tasks moved is regenerated whole, never completed from the previous one"
+            )
+    fields = ("commit", "date", "version", "fingerprints")
+    record = {
+        "entries": len(carried),
+        "agreed": agreed,
+        "from": {f: manifest.get(f) for f in fields},
+        "why": WHY,
+    }
+    return carried, record
