@@ -265,3 +265,13 @@ def test_a_stopped_regeneration_carries_the_previous_store_s_other_tasks(built, 
     moved = replace(entries[0], results=entries[0].results + 1e-12)
     with pytest.raises(st.StoreError, match=f"task {moved.key} .* differs from the previous"):
         carry([moved], folder)
+
+
+def test_the_landing_line_says_how_many_tasks_were_carried() -> None:
+    from mechlib.pipeline import storecmd
+
+    carried = {"entries": 3, "agreed": 40, "from": {"commit": "ae68adb33567"}, "why": "stopped"}
+    text = storecmd._carried_text({"carried": carried})
+    assert "3 were not solved again by this FE code" in text and "`ae68adb33567`" in text
+    assert "all 40 tasks this code solved" in text
+    assert storecmd._carried_text({}) == ""

@@ -89,6 +89,19 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
         f"cold whenever the book is checked and must agree within {AGREE_RTOL:g} of each run's "
         f"largest pose component: were {wrong_share:.0%} of the stored runs wrong, such a "
         f"sample would miss every one of them with probability at most {miss:.1%}."
+        + _carried_text(m)
+    )
+
+
+def _carried_text(manifest: dict) -> str:
+    """What a store completed from an earlier one says of the tasks it carried (none: "")."""
+    carried = manifest.get("carried")
+    if not carried:
+        return ""
+    return (
+        f" Of the store's tasks, {carried['entries']} were not solved again by this FE code but "
+        f"carried from the store of commit `{carried['from'].get('commit')}` (earlier FE code), "
+        f"whose results agreed bit for bit on all {carried['agreed']} tasks this code solved."
     )
 
 
