@@ -116,9 +116,15 @@ def check_member_thicknesses(thicknesses: Sequence[float], identified: float) ->
     Raises
     ------
     ValueError
-        On a thickness out of bounds, one given twice, or one equal to ``identified`` (its
-        member would replace the identified one).
+        On no thickness (the chapter compares the identified member with at least one other), a
+        thickness out of bounds, one given twice, or one equal to ``identified`` (its member
+        would replace the identified one).
     """
+    if isinstance(thicknesses, (str, bytes)) or len(thicknesses) == 0:
+        raise ValueError(
+            "thicknesses must list at least one other member's plate thickness [mm] "
+            f"(each in the layout's bounds), got {thicknesses!r}"
+        )
     out = [check_thickness(t) for t in thicknesses]
     if identified in out:
         raise ValueError(
