@@ -267,6 +267,43 @@ def test_a_stopped_regeneration_carries_the_previous_store_s_other_tasks(built, 
         carry([moved], folder)
 
 
+def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built, tmp_path):
+    from dataclasses import replace
+
+    from mechlib.campaign.carry import compare
+
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    previous = [replace(e, key="e" * 31 + str(i)) for i, e in enumerate(entries)]
+    folder = st.write_store(previous, tmp_path / "old", {"commit": "84391a6"})
+    same = compare(entries, folder)
+    assert same["tasks"] == same["both"] == same["identical"] == len(entries) >= 2
+    assert same["only_previous"] == 0 and same["from"]["commit"] == "84391a6"
+    assert set(same["largest_difference"].values()) == {0.0}
+    moved = [replace(entries[0], results=entries[0].results + 2.5e-9)]
+    record = compare(moved, folder)
+    assert (record["tasks"], record["both"], record["identical"]) == (1, 1, 0)
+    assert record["only_previous"] == len(entries) - 1
+    assert record["largest_difference"][entries[0].kind] == pytest.approx(2.5e-9, rel=1e-3)
+    reshaped = [replace(entries[0], results=entries[0].results[..., :1])]
+    with pytest.raises(st.StoreError, match="of shape"):
+        compare(reshaped, folder)
+
+
+def test_the_landing_line_says_how_the_store_compares_with_the_previous_one() -> None:
+    from mechlib.pipeline import storecmd
+
+    origin = {"commit": "ae68adb33567"}
+    same = {"tasks": 9, "both": 9, "identical": 9, "only_previous": 0, "from": origin,
+            "largest_difference": {"linear": 0.0}}  # fmt: skip
+    assert "All 9 of its tasks are bit for bit" in storecmd._compared_text({"compared": same})
+    moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9}}
+    text = storecmd._compared_text({"compared": moved})
+    assert "9 are also in the store it replaced (commit `ae68adb33567`" in text
+    assert "7 bit for bit" in text and "nonlinear 3e-09" in text
+    assert storecmd._compared_text({}) == ""
+
+
 def test_the_landing_line_says_how_many_tasks_were_carried() -> None:
     from mechlib.pipeline import storecmd
 

@@ -90,6 +90,7 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
         f"largest pose component: were {wrong_share:.0%} of the stored runs wrong, such a "
         f"sample would miss every one of them with probability at most {miss:.1%}."
         + _carried_text(m)
+        + _compared_text(m)
     )
 
 
@@ -102,6 +103,21 @@ def _carried_text(manifest: dict) -> str:
         f" Of the store's tasks, {carried['entries']} were not solved again by this FE code but "
         f"carried from the store of commit `{carried['from'].get('commit')}` (earlier FE code), "
         f"whose results agreed bit for bit on all {carried['agreed']} tasks this code solved."
+    )
+
+
+def _compared_text(manifest: dict) -> str:
+    """What the store's comparison with the one it replaced says (none recorded: "")."""
+    c = manifest.get("compared")
+    if not c:
+        return ""
+    old = f"the store it replaced (commit `{c['from'].get('commit')}`, earlier FE code)"
+    if c["identical"] == c["both"] == c["tasks"] and not c["only_previous"]:
+        return f" All {c['tasks']} of its tasks are bit for bit those of {old}."
+    diff = ", ".join(f"{k} {v:.3g}" for k, v in c["largest_difference"].items())
+    return (
+        f" Of its {c['tasks']} tasks, {c['both']} are also in {old}: {c['identical']} bit for "
+        f"bit, the largest difference of any result by kind of task {diff or 'none'}."
     )
 
 
@@ -185,6 +201,15 @@ def _pack(args: argparse.Namespace) -> int:
         # whether those seconds solved every run (an empty FE cache) or resumed from a cache
         "from_empty": args.from_empty,
     }
+    if args.compare is not None:
+        from mechlib.campaign.carry import compare
+
+        provenance["compared"] = c = compare(entries, args.compare)
+        print(
+            f"store: {c['both']} of {len(entries)} FE tasks also in {args.compare}, "
+            f"{c['identical']} of them bit for bit; largest difference by kind "
+            f"{c['largest_difference']}; {c['only_previous']} of its tasks not in this build"
+        )
     if args.carry is not None:
         from mechlib.campaign.carry import carry
 
@@ -263,6 +288,12 @@ def parser() -> argparse.ArgumentParser:
         default=None,
         help="a previous store whose tasks the build did not solve are carried (a stopped "
         "regeneration; refused if a task both hold differs)",
+    )
+    pack.add_argument(
+        "--compare",
+        type=Path,
+        default=None,
+        help="a previous store the build's tasks are compared with (recorded in the manifest)",
     )
     pack.add_argument(
         "--from-empty", action="store_true", help="the build started from an empty FE cache"
