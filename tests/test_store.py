@@ -300,7 +300,9 @@ def test_the_landing_line_says_how_the_store_compares_with_the_previous_one() ->
     moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9}}
     text = storecmd._compared_text({"compared": moved})
     assert "9 are also in the store it replaced (commit `ae68adb33567`" in text
-    assert "7 bit for bit" in text and "nonlinear 3e-09" in text
+    assert "7 bit for bit" in text and "nonlinear 3e-09" in text and text.endswith("3e-09.")
+    dropped = storecmd._compared_text({"compared": {**same, "only_previous": 2}})
+    assert dropped.endswith("; 2 tasks of the store it replaced are no longer asked for.")
     assert storecmd._compared_text({}) == ""
 
 

@@ -117,8 +117,10 @@ def _compared_text(manifest: dict) -> str:
     diff = ", ".join(f"{k} {v:.3g}" for k, v in c["largest_difference"].items())
     return (
         f" Of its {c['tasks']} tasks, {c['both']} are also in {old}: {c['identical']} bit for "
-        f"bit, the largest difference of any result by kind of task {diff or 'none'}."
-    )
+        f"bit, the largest difference of any result by kind of task {diff or 'none'}"
+        + (f"; {c['only_previous']} tasks of the store it replaced are no longer asked for." if c["only_previous"]
+           else ".")
+    )  # fmt: skip
 
 
 def _seed(args: argparse.Namespace) -> int:
