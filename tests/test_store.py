@@ -205,6 +205,8 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     line = storecmd.landing_line(folder)
     assert "1 geometrically non-linear runs and 3 linear load cases" in line
     assert "at commit `abc`" in line and "not solved again in this build" in line
+    assert "computed 2026-11-25 on" in line
+    assert storecmd._when("2026-11-29T07:16:18+01:00") == "2026-11-29 06:16 UTC"
     miss = (1 - storecmd.WRONG_SHARE) ** storecmd.COLD_NONLINEAR
     assert (
         f"probability at most {miss:.1%}" in line and f"{miss:.1%}" == "22.9%"

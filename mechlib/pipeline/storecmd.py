@@ -74,7 +74,7 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     runs = m["runs"]
     miss = (1.0 - wrong_share) ** COLD_NONLINEAR
     made = (
-        f"computed {m.get('date', 'on an unrecorded date')} on "
+        f"computed {_when(m.get('date'))} on "
         f"{m.get('processor', 'an unrecorded processor')} at commit "
         f"`{m.get('commit', 'unrecorded')}`"
     )
@@ -92,6 +92,20 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
         + _carried_text(m)
         + _compared_text(m)
     )
+
+
+def _when(date: str | None) -> str:
+    """A manifest's ISO date as the book writes dates (``2026-11-29 06:16 UTC``)."""
+    if not date:
+        return "on an unrecorded date"
+    try:
+        when = dt.datetime.fromisoformat(date)
+    except ValueError:
+        return date
+    if "T" not in date:  # a date without a time
+        return when.strftime("%Y-%m-%d")
+    when = when if when.tzinfo else when.replace(tzinfo=dt.UTC)
+    return when.astimezone(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
 
 
 def _carried_text(manifest: dict) -> str:
@@ -118,9 +132,12 @@ def _compared_text(manifest: dict) -> str:
     return (
         f" Of its {c['tasks']} tasks, {c['both']} are also in {old}: {c['identical']} bit for "
         f"bit, the largest difference of any result by kind of task {diff or 'none'}"
-        + (f"; {c['only_previous']} tasks of the store it replaced are no longer asked for." if c["only_previous"]
-           else ".")
-    )  # fmt: skip
+        + (
+            f"; {c['only_previous']} tasks of the store it replaced are no longer asked for."
+            if c["only_previous"]
+            else "."
+        )
+    )
 
 
 def _seed(args: argparse.Namespace) -> int:
