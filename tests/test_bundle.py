@@ -136,7 +136,7 @@ def test_the_bundle_holds_as_many_runs_as_the_landing_quotes() -> None:
     """The repository's store: the bundle's runs of each kind are the manifest's, which the
     landing page quotes."""
     from mechlib.paths import STORE_DIR
-    from mechlib.pipeline import bundleruns, storecmd
+    from mechlib.pipeline import bundleruns, storeline
 
     if not (STORE_DIR / "manifest.json").is_file():
         pytest.skip("no results store in this checkout")
@@ -146,7 +146,7 @@ def test_the_bundle_holds_as_many_runs_as_the_landing_quotes() -> None:
     nonlinear = sum(counts.get(n, 0) for n in bundleruns.RUN_FILES["nonlinear"])
     assert nonlinear == manifest["runs"]["nonlinear"]
     assert counts["runs/layout_nonlinear_runs.csv"] > 0  # the parallelogram's runs are in
-    line = storecmd.landing_line(STORE_DIR)
+    line = storeline.landing_line(STORE_DIR)
     if "read from the results store" in line:
         assert f"{nonlinear} geometrically non-linear runs" in line
 

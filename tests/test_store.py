@@ -194,28 +194,28 @@ def test_the_store_command_packs_seeds_checks_and_refuses_in_one_line(
 
 
 def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
-    from mechlib.pipeline import storecmd
+    from mechlib.pipeline import storeline
 
-    assert "no results store" in storecmd.landing_line(tmp_path / "absent")
+    assert "no results store" in storeline.landing_line(tmp_path / "absent")
     entries = [
         st.Entry("k" * 32, "spec", "nonlinear", 1, np.zeros((1, 6)), np.zeros((1, 22))),
         st.Entry("j" * 32, "spec", "linear", 1, np.zeros((3, 6)), np.zeros((3, 6))),
     ]
     folder = st.write_store(entries, tmp_path / "store", {"date": "2026-11-25", "commit": "abc"})
-    line = storecmd.landing_line(folder)
+    line = storeline.landing_line(folder)
     assert "1 geometrically non-linear runs and 3 linear load cases" in line
     assert "at commit `abc`" in line and "not solved again in this build" in line
     assert "computed 2026-11-25 on" in line
-    assert storecmd._when("2026-11-29T07:16:18+01:00") == "2026-11-29 06:16 UTC"
-    miss = (1 - storecmd.WRONG_SHARE) ** storecmd.COLD_NONLINEAR
+    assert storeline._when("2026-11-29T07:16:18+01:00") == "2026-11-29 06:16 UTC"
+    miss = (1 - storeline.WRONG_SHARE) ** storeline.COLD_NONLINEAR
     assert (
         f"probability at most {miss:.1%}" in line and f"{miss:.1%}" == "22.9%"
     )  # 14 runs, 10 % wrong: 0.9^14
     with pytest.raises(ValueError, match="wrong_share must be in"):
-        storecmd.landing_line(folder, wrong_share=1.0)
+        storeline.landing_line(folder, wrong_share=1.0)
     manifest = json.loads((folder / st.MANIFEST).read_text())
     (folder / st.MANIFEST).write_text(json.dumps({**manifest, "fingerprint": "0" * 16}))
-    assert "computed by other FE code" in storecmd.landing_line(folder)
+    assert "computed by other FE code" in storeline.landing_line(folder)
 
 
 def test_a_store_holds_both_mechanisms_and_seeds_each_by_its_own_code(built, tmp_path) -> None:
@@ -293,26 +293,26 @@ def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built
 
 
 def test_the_landing_line_says_how_the_store_compares_with_the_previous_one() -> None:
-    from mechlib.pipeline import storecmd
+    from mechlib.pipeline import storeline
 
     origin = {"commit": "ae68adb33567"}
     same = {"tasks": 9, "both": 9, "identical": 9, "only_previous": 0, "from": origin,
             "largest_difference": {"linear": 0.0}}  # fmt: skip
-    assert "All 9 of its tasks are bit for bit" in storecmd._compared_text({"compared": same})
+    assert "All 9 of its tasks are bit for bit" in storeline._compared_text({"compared": same})
     moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9}}
-    text = storecmd._compared_text({"compared": moved})
+    text = storeline._compared_text({"compared": moved})
     assert "9 are also in the store it replaced (commit `ae68adb33567`" in text
     assert "7 bit for bit" in text and "nonlinear 3e-09" in text and text.endswith("3e-09.")
-    dropped = storecmd._compared_text({"compared": {**same, "only_previous": 2}})
+    dropped = storeline._compared_text({"compared": {**same, "only_previous": 2}})
     assert dropped.endswith("; 2 tasks of the store it replaced are no longer asked for.")
-    assert storecmd._compared_text({}) == ""
+    assert storeline._compared_text({}) == ""
 
 
 def test_the_landing_line_says_how_many_tasks_were_carried() -> None:
-    from mechlib.pipeline import storecmd
+    from mechlib.pipeline import storeline
 
     carried = {"entries": 3, "agreed": 40, "from": {"commit": "ae68adb33567"}, "why": "stopped"}
-    text = storecmd._carried_text({"carried": carried})
+    text = storeline._carried_text({"carried": carried})
     assert "3 were not solved again by this FE code" in text and "`ae68adb33567`" in text
     assert "all 40 tasks this code solved" in text
-    assert storecmd._carried_text({}) == ""
+    assert storeline._carried_text({}) == ""

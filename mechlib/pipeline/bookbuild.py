@@ -31,7 +31,7 @@ from typing import Any
 import yaml
 
 from mechlib.paths import REPO_ROOT, STORE_DIR, records_dir
-from mechlib.pipeline import bundle, bundleruns, landing, provenance, storecmd
+from mechlib.pipeline import bundle, bundleruns, landing, provenance, storeline
 from mechlib.pipeline.book import explorer, methods, reportpage, verdictrole
 from mechlib.pipeline.book.cells import prepare_notebook
 from mechlib.pipeline.chapters import MAIN_PARAMETERS
@@ -293,7 +293,7 @@ def build(executed: Path, records: Path, book: Path, profile: str = "ci") -> lis
         Path(book) / "intro.md",
         profile,
         link=link,
-        provenance=f"{made}\n{storecmd.landing_line(STORE_DIR)}",
+        provenance=f"{made}\n{storeline.landing_line(STORE_DIR)}",
         bundle=f"/{data.relative_to(Path(book)).as_posix()}",
         bundle_bytes=data.stat().st_size,
         bundle_members=bundle.members(data),

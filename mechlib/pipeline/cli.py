@@ -32,7 +32,7 @@ NOTEBOOKS = REPO_ROOT / "notebooks"
 #: run's FE cache (each about a non-linear run, 5–40 s on the models the chapters' studies refine,
 #: plus one model build per model). With ``--store-checked`` (``make test``) the tasks the cache
 #: holds from the results store are left out of this draw: the store's own cold sample
-#: (``storecmd.COLD_NONLINEAR``) recomputes its entries in the same ``make test``, so this one
+#: (``storeline.COLD_NONLINEAR``) recomputes its entries in the same ``make test``, so this one
 #: samples only what the first run solved itself (nothing, on a clean clone of a current store)
 COLD_SAMPLE = 3
 
