@@ -1,5 +1,5 @@
 """``python -m mechlib.bench``: run the benchmarks."""
 
-from mechlib.bench import main
+from mechlib.bench.cli import main
 
 raise SystemExit(main())

@@ -184,7 +184,7 @@ def _chapter_spec():
     try:
         inputs = chapter_inputs("virtual_experiments", records_dir())
     except (FileNotFoundError, KeyError):
-        # the bench geometry (mechlib.bench.bench_geometry): the default dimensions
+        # the bench geometry (mechlib.bench.basics.bench_geometry): the default dimensions
         g, fraction, source = HexFlexGeometry(), DEFAULT_MESH_FRACTION, "bench"
     else:
         g = HexFlexGeometry.from_dict(inputs["geometry"])
