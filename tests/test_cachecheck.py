@@ -143,7 +143,7 @@ def test_the_determinism_sample_leaves_the_stores_entries_to_the_store_check(
     tmp_path, monkeypatch, capsys
 ) -> None:
     from mechlib.campaign import store
-    from mechlib.pipeline import cli
+    from mechlib.pipeline.coldsample import cold_sample
     from mechlib.pipeline.rerun import HIT_LOG
 
     forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
@@ -153,16 +153,16 @@ def test_the_determinism_sample_leaves_the_stores_entries_to_the_store_check(
     (rerun / HIT_LOG).write_text(log.read_text())
     (rerun / "fe-cache").symlink_to(cache)
     folder = store.write_store(store.entries_from_cache(log, cache), tmp_path / "store")
-    assert cli._cold_sample(rerun, 1, folder) is False  # nothing of its own to recompute
+    assert cold_sample(rerun, 1, folder) is False  # nothing of its own to recompute
     assert "results store's entries" in capsys.readouterr().out
-    assert cli._cold_sample(rerun, 1) is False  # without the store: recomputed, bit-identical
+    assert cold_sample(rerun, 1) is False  # without the store: recomputed, bit-identical
     assert "bit-identical" in capsys.readouterr().out
     # a cache file that is not the store's entry under its key is found, not left out
     (entry,) = [e for e in cc.read_log(log) if e["kind"] == "nonlinear"]
     np.save(cache / entry["file"], np.load(cache / entry["file"]) * (1 + 1e-12))
-    assert cli._cold_sample(rerun, 1, folder) is True
+    assert cold_sample(rerun, 1, folder) is True
     assert "DIFFERS from the results store's entry" in capsys.readouterr().out
     # a re-run that read no non-linear task has nothing to show: it fails
     (rerun / HIT_LOG).write_text("")
-    assert cli._cold_sample(rerun, 1, folder) is True
+    assert cold_sample(rerun, 1, folder) is True
     assert "read no non-linear FE task" in capsys.readouterr().out
