@@ -115,5 +115,5 @@ store: $(STAMP)
 	MECHLIB_FE_LOG=$(abspath $(BUILD)/store-tasks.jsonl) $(if $(DASK_SCHEDULER),MECHLIB_DASK_SCHEDULER=$(DASK_SCHEDULER)) \
 	  $(MAKE) --no-print-directory -j2 notebooks $(if $(FROM_EMPTY),NO_STORE_SEED=1); \
 	$(PIPELINE) store pack --log $(BUILD)/store-tasks.jsonl --cache $(FE_CACHE) --store store --commit $$head \
-	  --seconds $$(( $$(date +%s) - start )) $(if $(FROM_EMPTY),--from-empty) $(if $(wildcard store/manifest.json),--compare store) \
+	  --seconds $$(( $$(date +%s) - start )) $(if $(FROM_EMPTY),--from-empty) $(if $(FROM_EMPTY),$(if $(wildcard store/manifest.json),--compare store)) \
 	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)"

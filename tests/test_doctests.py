@@ -27,6 +27,7 @@ MODULES = (
     "mechlib.fivebar.kinematics",
     "mechlib.metamodels.legendre",
     "mechlib.params",
+    "mechlib.campaign.compare",
 )
 #: issue 60: at least this many examples, imports not counted
 MIN_EXAMPLES = 30

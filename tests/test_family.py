@@ -83,8 +83,9 @@ def test_member_thicknesses_exclude_the_identified_one_and_repeats():
         family.check_member_thicknesses([0.45, 0.45], 0.6416)
     with pytest.raises(ValueError, match=r"thickness \[mm\]"):
         family.check_member_thicknesses([0.1], 0.6416)
-    with pytest.raises(ValueError, match="at least one other member"):
-        family.check_member_thicknesses([], 0.6416)
+    for bad in ([], 0.45, "0.45", None, [[0.45]]):
+        with pytest.raises(ValueError, match="at least one other member"):
+            family.check_member_thicknesses(bad, 0.6416)
 
 
 def test_mesh_fractions_are_checked_as_decreasing_and_named_as_given():

@@ -206,7 +206,6 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     assert "1 geometrically non-linear runs and 3 linear load cases" in line
     assert "at commit `abc`" in line and "not solved again in this build" in line
     assert "computed 2026-11-25 on" in line
-    assert storeline._when("2026-11-29T07:16:18+01:00") == "2026-11-29 06:16 UTC"
     miss = (1 - storeline.WRONG_SHARE) ** storeline.COLD_NONLINEAR
     assert (
         f"probability at most {miss:.1%}" in line and f"{miss:.1%}" == "22.9%"
@@ -272,7 +271,7 @@ def test_a_stopped_regeneration_carries_the_previous_store_s_other_tasks(built, 
 def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built, tmp_path):
     from dataclasses import replace
 
-    from mechlib.campaign.carry import compare
+    from mechlib.campaign.compare import compare
 
     cache, log = built
     entries = st.entries_from_cache(log, cache)
@@ -287,24 +286,47 @@ def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built
     assert (record["tasks"], record["both"], record["identical"]) == (1, 1, 0)
     assert record["only_previous"] == len(entries) - 1
     assert record["largest_difference"][entries[0].kind] == pytest.approx(2.5e-9, rel=1e-3)
+    json.dumps(record, allow_nan=False)  # a manifest record: plain JSON
     reshaped = [replace(entries[0], results=entries[0].results[..., :1])]
     with pytest.raises(st.StoreError, match="of shape"):
         compare(reshaped, folder)
+    broken = entries[0].results.copy()
+    broken.flat[0] = np.nan
+    with pytest.raises(st.StoreError, match="not finite"):
+        compare([replace(entries[0], results=broken)], folder)
+
+
+def test_pack_refuses_to_compare_and_carry_at_once(built, tmp_path, monkeypatch, capsys) -> None:
+    from mechlib.pipeline import storecmd
+
+    cache, log = built
+    monkeypatch.setattr(storecmd, "commit", lambda: "0123456789ab")
+    monkeypatch.setattr(storecmd, "_untracked_sources", lambda: [])
+    args = ["pack", "--log", str(log), "--cache", str(cache), "--store", str(tmp_path / "s")]
+    both = ["--compare", str(tmp_path / "a"), "--carry", str(tmp_path / "b")]
+    assert storecmd.main([*args, *both]) == 2 and not (tmp_path / "s").exists()
+    assert "--compare and --carry together" in capsys.readouterr().err
 
 
 def test_the_landing_line_says_how_the_store_compares_with_the_previous_one() -> None:
     from mechlib.pipeline import storeline
 
-    origin = {"commit": "ae68adb33567"}
+    prints = {"hexflex": "ebad646bcc518499"}
+    origin = {"commit": "ae68adb33567", "fingerprints": {"hexflex": "9848c5fc81fc5730"}}
     same = {"tasks": 9, "both": 9, "identical": 9, "only_previous": 0, "from": origin,
             "largest_difference": {"linear": 0.0}}  # fmt: skip
-    assert "All 9 of its tasks are bit for bit" in storeline._compared_text({"compared": same})
+    text = storeline._compared_text({"compared": same, "fingerprints": prints, "from_empty": True})
+    assert "The store's 9 FE tasks (a task is one model's block" in text
+    assert ", solved from an empty FE cache, are all bit for bit those of the store it " in text
+    assert text.endswith("(commit `ae68adb33567`, earlier FE code).")
     moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9}}
-    text = storeline._compared_text({"compared": moved})
-    assert "9 are also in the store it replaced (commit `ae68adb33567`" in text
-    assert "7 bit for bit" in text and "nonlinear 3e-09" in text and text.endswith("3e-09.")
-    dropped = storeline._compared_text({"compared": {**same, "only_previous": 2}})
-    assert dropped.endswith("; 2 tasks of the store it replaced are no longer asked for.")
+    text = storeline._compared_text({"compared": moved, "fingerprints": origin["fingerprints"]})
+    assert "snapshot field), 9 are also in the store it replaced (commit `ae68adb33567`, " in text
+    assert "the same FE code): 7 bit for bit; the largest difference" in text
+    assert text.endswith("is 3e-09 in its non-linear runs (mm, rad).")  # zeros not listed
+    dropped = storeline._compared_text({"compared": {**same, "only_previous": 1}})
+    assert dropped.endswith(": 9 bit for bit; 1 task of that store is not in this one.")
+    assert "an unrecorded commit" in storeline._compared_text({"compared": {**same, "from": {}}})
     assert storeline._compared_text({}) == ""
 
 
@@ -313,6 +335,18 @@ def test_the_landing_line_says_how_many_tasks_were_carried() -> None:
 
     carried = {"entries": 3, "agreed": 40, "from": {"commit": "ae68adb33567"}, "why": "stopped"}
     text = storeline._carried_text({"carried": carried})
-    assert "3 were not solved again by this FE code" in text and "`ae68adb33567`" in text
-    assert "all 40 tasks this code solved" in text
+    assert "3 were not solved again but carried from the store it replaced" in text
+    assert "(commit `ae68adb33567`, earlier FE code)" in text
+    assert text.endswith("agreed bit for bit on all 40 tasks both hold.")
+    one = storeline._carried_text({"carried": {**carried, "agreed": 1}})
+    assert one.endswith("on the 1 task both hold.")
     assert storeline._carried_text({}) == ""
+
+
+def test_a_manifest_date_is_written_as_the_book_writes_dates() -> None:
+    from mechlib.pipeline import storeline
+
+    assert storeline._when("2026-11-29T07:16:18+01:00") == "2026-11-29 06:16 UTC"
+    assert storeline._when("2026-11-25 10:00:00") == "2026-11-25 10:00 UTC"  # naive: UTC
+    assert storeline._when("2026-11-25") == "2026-11-25"
+    assert storeline._when(None) == "on an unrecorded date"

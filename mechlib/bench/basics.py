@@ -134,7 +134,7 @@ def _print_cost(mech, poses: np.ndarray) -> None:
 
 
 def print_postures() -> None:
-    """Print :func:`posture_selection`."""
+    """Time :func:`posture_selection` and print its times and speed-up."""
     res = posture_selection()
     print(f"posture selection, {res['candidates']} candidates, {N_SELECT} postures (greedy phase):")
     print(f"  active (det + Woodbury updates): {res['active_s']:.3f} s")
@@ -143,7 +143,7 @@ def print_postures() -> None:
 
 
 def print_load_cases() -> None:
-    """Print :func:`hexflex_load_cases`."""
+    """Time :func:`hexflex_load_cases` and print its stages, totals and speed-up."""
     hx = hexflex_load_cases()
     print(f"HexFlex, Q2, {hx['n_dofs']} DOFs, {N_LOAD_CASES} load cases:")
     print(
@@ -165,7 +165,7 @@ def print_load_cases() -> None:
 
 
 def print_orderings() -> None:
-    """Print :func:`factorisation_orderings`."""
+    """Time :func:`factorisation_orderings` and print both times and the fill ratio."""
     lu = factorisation_orderings()
     print(f"SuperLU on the same stiffness ({lu['n_dofs']} DOFs):")
     print(f"  minimum degree on A + A^T, symmetric mode: {lu['ours_s']:.2f} s")

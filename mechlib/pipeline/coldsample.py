@@ -15,16 +15,31 @@ from mechlib.pipeline.rerun import HIT_LOG
 #: run's FE cache (each about a non-linear run, 5–40 s on the models the chapters' studies refine,
 #: plus one model build per model). With ``--store-checked`` (``make test``) the tasks the cache
 #: holds from the results store are left out of this draw: the store's own cold sample
-#: (``storeline.COLD_NONLINEAR``) recomputes its entries in the same ``make test``, so this one
+#: (``storecmd.COLD_NONLINEAR``) recomputes its entries in the same ``make test``, so this one
 #: samples only what the first run solved itself (nothing, on a clean clone of a current store)
 COLD_SAMPLE = 3
 
 
 def cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) -> bool:
-    """Recompute a seeded sample of the FE tasks the re-run read from its cache (those whose
-    file holds the results store ``store``'s entry under the same key left out: the store's own
-    cold check covers them); True if one differs from its cached result, if a cache file differs
-    from the store's entry of its key, or if the re-run read no non-linear task."""
+    """Recompute a seeded sample of the FE tasks a re-run read from its cache, and say whether
+    the check failed.
+
+    Parameters
+    ----------
+    rerun_dir : Path
+        The re-run's folder: its hit log (``HIT_LOG``) and its ``fe-cache``.
+    n_nonlinear : int
+        Non-linear tasks to recompute (one block of linear runs besides).
+    store : Path, optional
+        The results store: tasks whose cache file holds its entry under the same key are left
+        out (the store's own cold check covers them), and each such file must equal that entry.
+
+    Returns
+    -------
+    bool
+        True if a recomputed task differs from its cached result beyond ``AGREE_RTOL``, a cache
+        file differs from the store's entry of its key, or the re-run read no non-linear task.
+    """
     import numpy as np
 
     from mechlib.campaign.cachecheck import AGREE_RTOL, check_sample, read_log

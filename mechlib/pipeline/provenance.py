@@ -73,9 +73,19 @@ def versions(packages: tuple[str, ...] = PACKAGES) -> dict[str, str]:
     return out
 
 
+def utc_text(when: dt.datetime) -> str:
+    """A time as the book writes it, in UTC (a naive time is taken as UTC).
+
+    >>> utc_text(dt.datetime(2026, 11, 29, 7, 16, tzinfo=dt.timezone(dt.timedelta(hours=1))))
+    '2026-11-29 06:16 UTC'
+    """
+    when = when if when.tzinfo else when.replace(tzinfo=dt.UTC)
+    return when.astimezone(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+
+
 def text(now: dt.datetime | None = None, profile: str = "") -> str:
     """Markdown lines: commit, build date (UTC), profile, Python and package versions, CPU."""
-    when = (now or dt.datetime.now(dt.UTC)).strftime("%Y-%m-%d %H:%M UTC")
+    when = utc_text(now or dt.datetime.now(dt.UTC))
     listed = ", ".join(f"{k} {v}" for k, v in versions().items())
     parameters = (
         ""

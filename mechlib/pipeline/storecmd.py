@@ -27,7 +27,11 @@ from mechlib import fespecs as fespecs  # the FE families a store holds, registe
 from mechlib.campaign import store
 from mechlib.paths import DEFAULT_BUILD, REPO_ROOT, STORE_DIR
 from mechlib.pipeline.provenance import UNKNOWN, commit, cpu_model
-from mechlib.pipeline.storeline import COLD_LINEAR, COLD_NONLINEAR, COLD_STATE
+
+#: non-linear and linear tasks of the store that ``make test`` recomputes cold
+COLD_NONLINEAR, COLD_LINEAR = 14, 2
+#: snapshot (``STATE``) tasks of the store that ``make test`` recomputes cold: one full field
+COLD_STATE = 1
 
 
 def _seed(args: argparse.Namespace) -> int:
@@ -110,14 +114,19 @@ def _pack(args: argparse.Namespace) -> int:
         # whether those seconds solved every run (an empty FE cache) or resumed from a cache
         "from_empty": args.from_empty,
     }
+    if args.compare is not None and args.carry is not None:
+        raise store.StoreError(
+            "store pack: --compare and --carry together would count the carried tasks as "
+            "missing; --carry's record already compares the tasks both stores hold"
+        )
     if args.compare is not None:
-        from mechlib.campaign.carry import compare
+        from mechlib.campaign.compare import compare
 
         provenance["compared"] = c = compare(entries, args.compare)
         print(
             f"store: {c['both']} of {len(entries)} FE tasks also in {args.compare}, "
             f"{c['identical']} of them bit for bit; largest difference by kind "
-            f"{c['largest_difference']}; {c['only_previous']} of its tasks not in this build"
+            f"{c['largest_difference']}; {c['only_previous']} of its tasks not in this store"
         )
     if args.carry is not None:
         from mechlib.campaign.carry import carry

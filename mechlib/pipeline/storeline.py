@@ -10,12 +10,8 @@ from pathlib import Path
 
 from mechlib import fespecs as fespecs  # the FE families a store holds, registered
 from mechlib.campaign import store
-
-#: non-linear and linear tasks of the store that ``make test`` recomputes cold
-COLD_NONLINEAR, COLD_LINEAR = 14, 2
-#: snapshot (``STATE``) tasks of the store that ``make test`` recomputes cold: one full field
-COLD_STATE = 1
-
+from mechlib.pipeline.provenance import utc_text
+from mechlib.pipeline.storecmd import COLD_LINEAR, COLD_NONLINEAR
 
 #: the pages whose finite-element results the store holds (what the landing page says it feeds)
 STORE_USERS = (
@@ -34,6 +30,18 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     mechanism family in proportion to its runs, from a store whose share ``wrong_share`` of runs
     is wrong miss every wrong one, at most ``(1 − wrong_share)^COLD_NONLINEAR``
     (:func:`~mechlib.campaign.cachecheck.sample_uniform`).
+
+    Parameters
+    ----------
+    folder : Path
+        The results store (absent: the build computed every FE run).
+    wrong_share : float
+        The share of wrong stored runs the sentence's probability assumes, in (0, 1).
+
+    Returns
+    -------
+    str
+        The Markdown list line, with the store's carried and compared records when it has them.
 
     Raises
     ------
@@ -78,17 +86,35 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
 
 
 def _when(date: str | None) -> str:
-    """A manifest's ISO date as the book writes dates (``2026-11-29 06:16 UTC``)."""
+    """A manifest's ISO date as the book writes dates (``2026-11-29 06:16 UTC``; a date alone as
+    it is)."""
     if not date:
         return "on an unrecorded date"
     try:
         when = dt.datetime.fromisoformat(date)
     except ValueError:
         return date
-    if "T" not in date:  # a date without a time
-        return when.strftime("%Y-%m-%d")
-    when = when if when.tzinfo else when.replace(tzinfo=dt.UTC)
-    return when.astimezone(dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return date if len(date) == 10 else utc_text(when)
+
+
+def _n(count: int, word: str) -> str:
+    """``count`` and ``word``, plural unless one."""
+    return f"{count} {word}" if count == 1 else f"{count} {word}s"
+
+
+def _previous(origin: dict, manifest: dict) -> str:
+    """The store a record names: its commit, and whether its FE code was this store's."""
+    commit = origin.get("commit")
+    same = origin.get("fingerprints") and origin.get("fingerprints") == manifest.get("fingerprints")
+    code = "the same" if same else "earlier"
+    return f"{f'commit `{commit}`' if commit else 'an unrecorded commit'}, {code} FE code"
+
+
+#: what a stored task is, for a reader who met runs and load cases first
+TASKS = (
+    "FE tasks (a task is one model's block of linear load cases, one non-linear run, one model "
+    "size or one snapshot field)"
+)
 
 
 def _carried_text(manifest: dict) -> str:
@@ -97,10 +123,20 @@ def _carried_text(manifest: dict) -> str:
     if not carried:
         return ""
     return (
-        f" Of the store's tasks, {carried['entries']} were not solved again by this FE code but "
-        f"carried from the store of commit `{carried['from'].get('commit')}` (earlier FE code), "
-        f"whose results agreed bit for bit on all {carried['agreed']} tasks this code solved."
+        f" Of the store's {TASKS}, {carried['entries']} were not solved again but carried from "
+        f"the store it replaced ({_previous(carried['from'], manifest)}), which agreed bit for "
+        f"bit on {'the' if carried['agreed'] == 1 else 'all'} {_n(carried['agreed'], 'task')} "
+        "both hold."
     )
+
+
+#: a task kind as the landing page names it
+KIND_WORDS = {
+    "linear": "linear blocks (mm, rad)",
+    "nonlinear": "non-linear runs (mm, rad)",
+    "size": "model sizes (counts)",
+    "state": "snapshot fields (mm)",
+}
 
 
 def _compared_text(manifest: dict) -> str:
@@ -108,16 +144,21 @@ def _compared_text(manifest: dict) -> str:
     c = manifest.get("compared")
     if not c:
         return ""
-    old = f"the store it replaced (commit `{c['from'].get('commit')}`, earlier FE code)"
+    old = f"the store it replaced ({_previous(c['from'], manifest)})"
+    fresh = " solved from an empty FE cache" if manifest.get("from_empty") else ""
     if c["identical"] == c["both"] == c["tasks"] and not c["only_previous"]:
-        return f" All {c['tasks']} of its tasks are bit for bit those of {old}."
-    diff = ", ".join(f"{k} {v:.3g}" for k, v in c["largest_difference"].items())
-    return (
-        f" Of its {c['tasks']} tasks, {c['both']} are also in {old}: {c['identical']} bit for "
-        f"bit, the largest difference of any result by kind of task {diff or 'none'}"
-        + (
-            f"; {c['only_previous']} tasks of the store it replaced are no longer asked for."
-            if c["only_previous"]
-            else "."
+        fresh = f",{fresh}," if fresh else ""
+        return f" The store's {c['tasks']} {TASKS}{fresh} are all bit for bit those of {old}."
+    diffs = [
+        f"{v:.3g} in its {KIND_WORDS.get(k, k)}" for k, v in c["largest_difference"].items() if v
+    ]
+    gone = c["only_previous"]
+    tail = [f"the largest difference of any result is {', '.join(diffs)}"] if diffs else []
+    if gone:
+        tail.append(
+            f"{_n(gone, 'task')} of that store {'is' if gone == 1 else 'are'} not in this one"
         )
+    return (
+        f" Of the store's {c['tasks']} {TASKS}{fresh}, {c['both']} are also in {old}: "
+        f"{c['identical']} bit for bit" + "".join(f"; {t}" for t in tail) + "."
     )

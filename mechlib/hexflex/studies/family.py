@@ -120,7 +120,7 @@ def check_member_thicknesses(thicknesses: Sequence[float], identified: float) ->
         thickness out of bounds, one given twice, or one equal to ``identified`` (its member
         would replace the identified one).
     """
-    if isinstance(thicknesses, (str, bytes)) or len(thicknesses) == 0:
+    if isinstance(thicknesses, (str, bytes)) or np.ndim(thicknesses) != 1 or not len(thicknesses):
         raise ValueError(
             "thicknesses must list at least one other member's plate thickness [mm] "
             f"(each in the layout's bounds), got {thicknesses!r}"
