@@ -14,7 +14,8 @@ import pytest
 
 from mechlib import published as pub
 from mechlib.metamodels import evaluator, export, realtime
-from mechlib.metamodels.families import Surrogate, total_degree_exponents
+from mechlib.metamodels.families import Surrogate
+from mechlib.metamodels.pce import total_degree_exponents
 from mechlib.pipeline import pagecheck
 from mechlib.pipeline.book import claimcheck, explorer, explorercheck, explorerdraw, explorerpage
 

@@ -12,7 +12,8 @@ import pandas as pd
 import pytest
 
 from mechlib.metamodels import evaluator, export, realtime
-from mechlib.metamodels.families import Surrogate, predict_array, total_degree_exponents
+from mechlib.metamodels.families import Surrogate, predict_array
+from mechlib.metamodels.pce import total_degree_exponents
 from mechlib.reporting.jsonready import plain_tree
 
 

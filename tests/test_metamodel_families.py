@@ -210,7 +210,7 @@ def test_blas_threads_do_not_change_the_digits() -> None:
 
 def test_the_fast_legendre_evaluation_agrees_with_the_recurrence_up_to_the_largest_degree() -> None:
     from mechlib.metamodels import legendre
-    from mechlib.metamodels.families import legendre_products, total_degree_exponents
+    from mechlib.metamodels.pce import legendre_products, total_degree_exponents
     from mechlib.metamodels.realtime import MAX_DEGREE
 
     rng = np.random.default_rng(3)

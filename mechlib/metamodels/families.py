@@ -49,9 +49,7 @@ predict; chaospy's PCE is better at 100 runs, worse at 30, a thousand times slow
 
 from __future__ import annotations
 
-import itertools
 import math
-import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -59,7 +57,7 @@ import numpy as np
 
 from mechlib.blas import one_thread
 from mechlib.memo import array_memo
-from mechlib.metamodels import gaussian_process, legendre, linear, quadratic
+from mechlib.metamodels import gaussian_process, legendre, linear, pce, quadratic
 from mechlib.params import check_choice, check_float, check_int, check_matrix
 
 FAMILIES = ("linear", "quadratic", "cubic", "gp", "pce")
@@ -143,53 +141,6 @@ def n_terms(family: str, n_inputs: int) -> int:
     }[family]
 
 
-def total_degree_exponents(n_inputs: int, degree: int) -> np.ndarray:
-    """Exponents (terms, inputs) of every monomial of total degree ≤ ``degree``, graded order."""
-    rows = [np.zeros(n_inputs, dtype=int)]
-    for d in range(1, degree + 1):
-        for combo in itertools.combinations_with_replacement(range(n_inputs), d):
-            rows.append(np.bincount(combo, minlength=n_inputs))
-    return np.array(rows)
-
-
-def _monomials(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
-    return np.prod(u[:, None, :] ** exps[None, :, :], axis=2)
-
-
-def legendre_products(u: np.ndarray, exps: np.ndarray) -> np.ndarray:
-    """Products of Legendre polynomials √(2k+1) Pₖ (unit variance for uniform u in [-1, 1])."""
-    deg = int(exps.max())
-    vander = np.polynomial.legendre.legvander(u, deg)  # (runs, inputs, deg + 1)
-    vander = vander * np.sqrt(2 * np.arange(deg + 1) + 1)
-    cols = np.take_along_axis(vander, exps.T[None, :, :], axis=2)  # (runs, inputs, terms)
-    return np.prod(cols, axis=1)
-
-
-def _fit_pce(u: np.ndarray, y: np.ndarray, seed: int) -> dict[str, object]:
-    from sklearn.exceptions import ConvergenceWarning
-    from sklearn.linear_model import LassoLarsCV
-    from sklearn.model_selection import KFold
-
-    exps = total_degree_exponents(u.shape[1], PCE_DEGREE)
-    a = legendre_products(u, exps)
-    folds = KFold(PCE_CV_FOLDS, shuffle=True, random_state=seed)
-    coef = np.zeros((len(exps), y.shape[1]))
-    for j in range(y.shape[1]):
-        scale = float(np.std(y[:, j])) or 1.0
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", category=ConvergenceWarning)
-            model = LassoLarsCV(fit_intercept=False, cv=folds, max_iter=PCE_MAX_ITER).fit(
-                a, y[:, j] / scale
-            )
-        # the terms that entered the LARS path up to the chosen penalty; least squares fits them
-        keep = np.flatnonzero(np.any(model.coef_path_ != 0, axis=1))
-        if keep.size < len(u):
-            coef[keep, j], *_ = np.linalg.lstsq(a[:, keep], y[:, j], rcond=None)
-        else:  # as many terms as runs: least squares would interpolate; keep LARS's shrinkage
-            coef[:, j] = model.coef_ * scale
-    return {"exponents": exps, "coef": coef}
-
-
 @array_memo(maxsize=32)  # a chapter fits some families to the same runs twice
 def fit_surrogate(
     family: str,
@@ -246,13 +197,13 @@ def fit_surrogate(
         elif family == "quadratic":
             state = {"coef": quadratic.fit_quadratic(x, y)["coef"]}
         elif family == "cubic":
-            exps = total_degree_exponents(x.shape[1], CUBIC_DEGREE)
-            coef, *_ = np.linalg.lstsq(_monomials(u, exps), y, rcond=None)
+            exps = pce.total_degree_exponents(x.shape[1], CUBIC_DEGREE)
+            coef, *_ = np.linalg.lstsq(pce.monomials(u, exps), y, rcond=None)
             state = {"exponents": exps, "coef": coef}
         elif family == "gp":
             state = gaussian_process.fit_gp(u, y, seed=seed, trend="linear", amplitude=1.0)
         else:
-            state = _fit_pce(u, y, seed)
+            state = pce.fit_pce(u, y, seed, PCE_DEGREE, PCE_CV_FOLDS, PCE_MAX_ITER)
     return Surrogate(family, amplitude, x.shape[1], y.shape[1], state)
 
 
@@ -349,7 +300,7 @@ def predict_array(surrogate: Surrogate, x: np.ndarray) -> np.ndarray:
     if surrogate.family == "quadratic":
         return quadratic.quadratic_features(x)[0] @ s["coef"]
     if surrogate.family == "cubic":
-        return _monomials(u, s["exponents"]) @ s["coef"]
+        return pce.monomials(u, s["exponents"]) @ s["coef"]
     if surrogate.family == "gp":
         return gaussian_process.predict_scaled(s, u)
     return legendre.evaluate(u, s["exponents"], s["coef"])

@@ -1,6 +1,6 @@
 """Fast evaluation of a fitted Legendre polynomial (the ``pce`` family and a distilled model).
 
-:func:`mechlib.metamodels.families.legendre_products` builds the basis of a fit the way
+:func:`mechlib.metamodels.pce.legendre_products` builds the basis of a fit the way
 ``numpy.polynomial.legendre.legvander`` does (a recurrence, one array operation a degree); a
 real-time model evaluates one pose a call, where those operations' fixed costs dominate. Here the
 scaled Legendre values of every input come from its powers through one small matrix (the
@@ -93,7 +93,7 @@ def evaluate(u: np.ndarray, exponents: np.ndarray, coef: np.ndarray) -> np.ndarr
     Examples
     --------
     >>> import numpy as np
-    >>> from mechlib.metamodels.families import legendre_products, total_degree_exponents
+    >>> from mechlib.metamodels.pce import legendre_products, total_degree_exponents
     >>> exps = total_degree_exponents(3, 4)
     >>> coef = np.arange(2 * len(exps), dtype=float).reshape(-1, 2)
     >>> u = np.array([[0.3, -0.7, 0.9], [1.0, 0.0, -1.0]])

@@ -20,14 +20,9 @@ import numpy as np
 from scipy.stats import qmc
 
 from mechlib.blas import one_thread
-from mechlib.metamodels.families import (
-    Surrogate,
-    legendre_products,
-    name_of,
-    predict_array,
-    total_degree_exponents,
-)
+from mechlib.metamodels.families import Surrogate, name_of, predict_array
 from mechlib.metamodels.metrics import error_metrics
+from mechlib.metamodels.pce import legendre_products, total_degree_exponents
 from mechlib.params import check_float, check_int
 
 DISTILLED = "distilled"
