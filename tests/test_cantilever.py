@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
+from mechlib.fe.boxmesh import box_hexahedra
 from mechlib.fe.nonlinear import NonlinearSolver
 from mechlib.fe.svk_tangent import SVKTangent
-from mechlib.hexflex.studies.cantilever import ELASTICA_TOL, Cantilever, box_hexahedra
+from mechlib.hexflex.studies.cantilever import ELASTICA_TOL, Cantilever
 from mechlib.hexflex.studies.elastica import MAX_ALPHA, elastica_tip
 
 #: Mattiasson (1981), "Numerical results from large deflection beam and frame problems analysed
