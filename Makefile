@@ -110,10 +110,10 @@ store-check: $(STAMP)
 	@if test -f store/manifest.json; then $(PIPELINE) store check --store store; else echo "store-check skipped: no store/manifest.json (make store)"; fi
 store: $(STAMP)
 	$(REQUIRE_CI)
-	$(PIPELINE) store clean && rm -rf $(BUILD)/executed $(BUILD)/store-tasks.jsonl $(if $(FROM_EMPTY),$(FE_CACHE)) && mkdir -p $(BUILD)
+	$(PIPELINE) store clean $(if $(FROM_EMPTY)$(NO_STORE_SEED),,--reads-store) && rm -rf $(BUILD)/executed $(BUILD)/store-tasks.jsonl $(if $(FROM_EMPTY),$(FE_CACHE)) && mkdir -p $(BUILD)
 	start=$$(date +%s); head=$$(git rev-parse --short=12 HEAD); \
 	MECHLIB_FE_LOG=$(abspath $(BUILD)/store-tasks.jsonl) $(if $(DASK_SCHEDULER),MECHLIB_DASK_SCHEDULER=$(DASK_SCHEDULER)) \
-	  $(MAKE) --no-print-directory -j2 notebooks $(if $(FROM_EMPTY),NO_STORE_SEED=1); \
+	  $(MAKE) --no-print-directory -j2 notebooks $(if $(FROM_EMPTY),NO_STORE_SEED=1) && \
 	$(PIPELINE) store pack --log $(BUILD)/store-tasks.jsonl --cache $(FE_CACHE) --store store --commit $$head \
 	  --seconds $$(( $$(date +%s) - start )) $(if $(FROM_EMPTY),--from-empty) $(if $(FROM_EMPTY),$(if $(wildcard store/manifest.json),--compare store)) \
 	  --workers "$(if $(DASK_SCHEDULER),Dask cluster $(DASK_SCHEDULER),the notebooks' local worker processes)"

@@ -222,7 +222,11 @@ def pareto_order(effects: object) -> np.ndarray:
     return np.argsort(-c, kind="stable")
 
 
-def dominant(effects: object, fraction: float = 0.01) -> np.ndarray:
+#: an effect "mainly affects" a response when its magnitude is at least this share of the largest
+DOMINANT_FRACTION = 0.01
+
+
+def dominant(effects: object, fraction: float = DOMINANT_FRACTION) -> np.ndarray:
     """Mask of effects whose magnitude is at least ``fraction`` of the largest one.
 
     A magnitude criterion for "mainly affected by", suited to noise-free computer experiments
@@ -261,7 +265,7 @@ def lenth_summary(lenths: list[Lenth], fields: tuple[str, ...]) -> np.ndarray:
     return np.array([[getattr(lz, f) for lz in lenths] for f in fields], dtype=float)
 
 
-def dominant_columns(effects: object, fraction: float = 0.01) -> np.ndarray:
+def dominant_columns(effects: object, fraction: float = DOMINANT_FRACTION) -> np.ndarray:
     """:func:`dominant` per response: a (factors, outputs) mask, each column against its own
     largest effect."""
     c = check_matrix("effects", effects)

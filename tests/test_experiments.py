@@ -400,7 +400,7 @@ def test_a_worker_with_other_fe_code_refuses_the_task(monkeypatch) -> None:
     monkeypatch.setattr(ex, "_task", lambda *a: pytest.fail("solved by other code"))
     spec = ModelSpec(SMALL, element="q2", mesh_size=1.0)
     with pytest.raises(ex.CodeMismatchError, match=r"not the submitting process's \(0{16}\)"):
-        ex._same_code_task("0" * 16, spec, "linear", np.zeros((1, 6)), 1)
+        ex.same_code_task("0" * 16, spec, "linear", np.zeros((1, 6)), 1)
     here = ex.model_code_fingerprint(spec.TASK_MODULES)
     monkeypatch.setattr(ex, "_task", lambda *a: np.ones((1, 6)))
-    assert ex._same_code_task(here, spec, "linear", np.zeros((1, 6)), 1).shape == (1, 6)
+    assert ex.same_code_task(here, spec, "linear", np.zeros((1, 6)), 1).shape == (1, 6)

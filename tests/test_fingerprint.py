@@ -229,6 +229,31 @@ def test_the_fe_closure_holds_the_task_runner_and_the_specification() -> None:
     assert "mechlib.fe.protocol" not in model_modules(ModelSpec.TASK_MODULES)
 
 
+@pytest.mark.parametrize("edited", ["mechlib.campaign.solve", "mechlib.hexflex.spec"])
+def test_an_edit_of_the_solve_or_the_specification_changes_the_fingerprint(
+    edited, monkeypatch
+) -> None:
+    """The fingerprint itself (not only the closure list) digests the task's solve, which
+    :func:`model_code_fingerprint` adds to every family, and the specification's module."""
+    from mechlib.campaign import taskcache
+
+    read = taskcache._source
+    before = model_code_fingerprint.__wrapped__(ModelSpec.TASK_MODULES)
+    monkeypatch.setattr(
+        taskcache, "_source", lambda n: read(n) + b"\n_EDITED = 1\n" if n == edited else read(n)
+    )
+    assert model_code_fingerprint.__wrapped__(ModelSpec.TASK_MODULES) != before
+
+
+def test_every_family_lists_its_specification_module_among_its_task_modules() -> None:
+    """A family's ``build`` and ``SOLVE_METHOD`` live in its specification's module: a family
+    that left it out of ``TASK_MODULES`` would leave them out of its key."""
+    from mechlib.campaign.spec import families
+
+    for fam in families():
+        assert fam.spec.__module__ in fam.spec.TASK_MODULES, fam.name
+
+
 def test_the_key_of_a_task_follows_its_fingerprint() -> None:
     forces = np.array([[0.5, -0.3, 0.2, 0.4, -0.1, 0.3]])
     spec = ModelSpec.__module__

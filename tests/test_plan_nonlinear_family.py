@@ -6,24 +6,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pasting import planned  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib import published as pub
 from mechlib.hexflex.studies import leanmesh
-from mechlib.reporting import plans
-from mechlib.reporting.records import Recorder
 from mechlib.reporting.tolerances import lean_pose_pct
 
 R = list(pub.RESPONSES)
-
-
-def planned() -> tuple[Recorder, dict[str, object]]:
-    pasted: dict[str, object] = {}
-    rec = Recorder(
-        "nonlinear_family",
-        paste=lambda name, value: pasted.__setitem__(name, value),
-        plan=plans.load("nonlinear_family"),
-    )
-    return rec, pasted
 
 
 def test_the_lean_pose_tolerance_is_the_fit_tolerance_in_points() -> None:
@@ -42,7 +31,7 @@ def test_the_mesh_text_names_the_lean_stand_ins_and_their_sizes() -> None:
         f"({min(dofs)} to {max(dofs)} free DOFs)"
     )
     for mesh, text in (("lean", by_hand), ("default", "the model page's mesh rule")):
-        rec, pasted = planned()
+        rec, pasted = planned("nonlinear_family")
         rec.value("family.nonlinear_n_dofs", dofs, context={"mesh": mesh})
         assert pasted["nl_mesh_text"] == text
         assert rec.glued["nl_mesh_text"] == {"text_of": "family.nonlinear_n_dofs"}
@@ -51,7 +40,7 @@ def test_the_mesh_text_names_the_lean_stand_ins_and_their_sizes() -> None:
 
 def test_the_thinnest_and_thickest_members_parts_are_glued_by_their_rows() -> None:
     even_odd = np.array([[3.0, 1.0], [5.0, 2.0], [4.0, 0.5]])
-    rec, pasted = planned()
+    rec, pasted = planned("nonlinear_family")
     rec.value("family.even_odd_pct", even_odd, context={"thin": 1, "thick": 2})
     assert rec.glued["even_thin"] == {"key": "family.even_odd_pct", "index": [1, 0]}
     assert rec.glued["odd_thick"] == {"key": "family.even_odd_pct", "index": [2, 1]}
@@ -60,7 +49,7 @@ def test_the_thinnest_and_thickest_members_parts_are_glued_by_their_rows() -> No
 
 def test_the_mesh_study_glues_the_finest_mesh_row_only_when_there_is_one() -> None:
     change = np.array([[0.1, 0.3, 0.2], [0.2, 0.1, 0.4], [0.05, 0.02, 0.01]])
-    rec, pasted = planned()
+    rec, pasted = planned("nonlinear_family")
     rec.value("mesh.departure_change_pct", change, context={"n_mesh": 2})
     rec.value("mesh.linear_change_pct", np.array([0.3, 0.4, 1e-4]), context={"n_mesh": 2})
     rec.value("mesh.quadrature_worst_pct", change[2:].max(axis=1))
@@ -68,7 +57,7 @@ def test_the_mesh_study_glues_the_finest_mesh_row_only_when_there_is_one() -> No
     assert pasted["mesh_dep_component"] == R[int(change[1].argmax())]
     assert rec.glued["mesh_lin_change"] == {"key": "mesh.linear_change_pct", "index": 1}
     assert rec.glued["quad_dep_change"] == {"key": "mesh.quadrature_worst_pct", "index": 0}
-    one, pasted = planned()
+    one, pasted = planned("nonlinear_family")
     one.value("mesh.departure_change_pct", change[2:], context={"n_mesh": 0})
     assert "mesh_dep_change" not in one.glued
     assert pasted["mesh_dep_component"] == R[int(change[2].argmax())]
@@ -76,7 +65,7 @@ def test_the_mesh_study_glues_the_finest_mesh_row_only_when_there_is_one() -> No
 
 def test_the_lean_verdicts_read_as_written_by_hand() -> None:
     for meets in (True, False):
-        rec, pasted = planned()
+        rec, pasted = planned("nonlinear_family")
         rec.value("lean.meets_criteria", meets)
         assert pasted["lean_verdict"] == (
             "meets the criteria" if meets else "does not meet the criteria"
@@ -92,7 +81,7 @@ def test_the_lean_verdicts_read_as_written_by_hand() -> None:
 def test_the_other_members_verdicts_read_as_written_by_hand() -> None:
     others, unfitted = [0.35, 0.45, 0.55], {0.35: (1.234, 20)}
     meet = np.array([False, False, True])
-    rec, pasted = planned()
+    rec, pasted = planned("nonlinear_family")
     rec.value("lean.unfitted_members_mm", list(unfitted), context={"unfitted": unfitted})
     rec.value("lean.other_meet_criteria", meet, context={"others": others, "unfitted": unfitted})
     assert pasted["lean_unfitted"] == (
@@ -104,7 +93,7 @@ def test_the_other_members_verdicts_read_as_written_by_hand() -> None:
         "them; the 0.55 mm member's stand-in meets them"
     )
     assert pasted["lean_other_use"].startswith("Because it does not meet them on every member")
-    every, pasted = planned()
+    every, pasted = planned("nonlinear_family")
     every.value("lean.unfitted_members_mm", [], context={"unfitted": {}})
     every.value(
         "lean.other_meet_criteria", np.ones(2, bool), context={"others": [1, 2], "unfitted": {}}
@@ -115,7 +104,7 @@ def test_the_other_members_verdicts_read_as_written_by_hand() -> None:
 
 def test_the_other_members_summary_reads_as_written_by_hand_on_every_branch() -> None:
     pose, dep, moves, own_move = np.array([0.5, 0.31]), np.array([5.4, 2.0]), [1.9, 0.7], 0.0023
-    fitted, pasted = planned()
+    fitted, pasted = planned("nonlinear_family")
     fitted.value("lean.other_failed_runs", 0)
     fitted.value("lean.other_worst_pose_pct", pose)
     fitted.value("lean.other_worst_departure_pct", dep)
@@ -142,7 +131,7 @@ def test_the_other_members_summary_reads_as_written_by_hand_on_every_branch() ->
         ([0.35], "No other member's stand-in was fitted, so none was compared."),
         ([], "No other member was solved."),
     ):
-        rec, pasted = planned()
+        rec, pasted = planned("nonlinear_family")
         unfitted = {t: (1.2, 20) for t in others}
         rec.value("lean.unfitted_members_mm", others, context={"unfitted": unfitted})
         rec.value(

@@ -4,23 +4,12 @@ recorded values are those the notebook used to write by hand."""
 from __future__ import annotations
 
 import numpy as np
+from pasting import planned  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib import published as pub
 from mechlib import screening
-from mechlib.reporting import plans
-from mechlib.reporting.records import Recorder
 
 R = list(pub.RESPONSES)
-
-
-def planned() -> tuple[Recorder, dict[str, object]]:
-    pasted: dict[str, object] = {}
-    rec = Recorder(
-        "virtual_experiments",
-        paste=lambda name, value: pasted.__setitem__(name, value),
-        plan=plans.load("virtual_experiments"),
-    )
-    return rec, pasted
 
 
 def test_the_new_dominant_factors_read_as_the_screening_lists_them() -> None:
@@ -29,11 +18,11 @@ def test_the_new_dominant_factors_read_as_the_screening_lists_them() -> None:
     mask[1, 5] = True  # θz: T1D2
     sets = screening.factor_sets(mask, list(pub.FACTORS))
     by_hand = "; ".join(f"{r}: {', '.join(sorted(s))}" for r, s in zip(R, sets, strict=True) if s)
-    rec, pasted = planned()
+    rec, pasted = planned("virtual_experiments")
     rec.value("nl_designs.table2_new_dominant", mask)
     assert pasted["new_dominant"] == by_hand == "z: T1D1, T3D1; θz: T1D2"
     assert rec.glued["new_dominant"] == {"text_of": "nl_designs.table2_new_dominant"}
-    none, pasted = planned()
+    none, pasted = planned("virtual_experiments")
     none.value("nl_designs.table2_new_dominant", np.zeros((6, 6), dtype=bool))
     assert pasted["new_dominant"] == "none"
 
@@ -41,7 +30,7 @@ def test_the_new_dominant_factors_read_as_the_screening_lists_them() -> None:
 def test_the_sweep_glues_the_worst_components_exponents_and_the_first_amplitude_over() -> None:
     rel_pct = np.array([[0.1, 0.2, 0.3, 0.0, 0.0, 0.1], [0.5, 2.0, 1.5, 0.1, 0.1, 0.4]])
     exponent = np.array([[1.0, 1.9, 1.2, 2.1, 0.8, 1.0], [1.1, 2.4, 1.3, 1.5, 1.0, 1.2]])
-    rec, pasted = planned()
+    rec, pasted = planned("virtual_experiments")
     rec.value("sweep.rel_pct", rel_pct)
     rec.value("sweep.over_1pct", [False, True], context={"amplitudes": np.array([0.5, 1.0])})
     rec.value("sweep.exponent", exponent, context={"rel_pct": rel_pct})
@@ -53,17 +42,17 @@ def test_the_sweep_glues_the_worst_components_exponents_and_the_first_amplitude_
     assert rec.glued["p_lo"]["index"] == [0, 4] and rec.glued["p_hi"]["index"] == [1, 1]
     assert rec.glued["p0_max"]["index"] == [0, 3]
     assert pasted["p0_component"] == "θx"
-    never, pasted = planned()
+    never, pasted = planned("virtual_experiments")
     never.value("sweep.over_1pct", [False, False], context={"amplitudes": np.array([0.5, 3.0])})
     assert pasted["first_over"] == "none up to 3 N"
 
 
 def test_the_mesh_of_the_nonlinear_runs_is_named_by_the_parameter() -> None:
-    lean, pasted = planned()
+    lean, pasted = planned("virtual_experiments")
     lean.value("model.nonlinear_n_dofs", 1234, context={"mesh": "lean", "fit_tol": 1e-4})
     assert "lean mesh of the family page (1234 free DOFs)" in pasted["nl_mesh_text"]
     assert "within 0.01 %" in pasted["nl_mesh_text"]
-    own, pasted = planned()
+    own, pasted = planned("virtual_experiments")
     own.value("model.nonlinear_n_dofs", 1234, context={"mesh": "default", "fit_tol": 1e-4})
     assert pasted["nl_mesh_text"] == "this chapter's model itself, on the same mesh"
 
@@ -72,7 +61,7 @@ def test_eq6_is_better_where_its_error_is_below_s_ts() -> None:
     scores = np.array(
         [[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], [0, 0, 0, 0, 0, 0], [2.0, 1.0, 3.0, 1, 9, 1]]
     )
-    rec, pasted = planned()
+    rec, pasted = planned("virtual_experiments")
     rec.value("nl_designs.validation_max_range_pct", scores)
     assert pasted["eq6_better"] == "y, θx, θz"
     assert pasted["eq6_worse"] == "x, z, θy"
@@ -81,7 +70,7 @@ def test_eq6_is_better_where_its_error_is_below_s_ts() -> None:
 
 
 def test_the_table5_row_quotes_both_settings_largest_errors() -> None:
-    rec, _ = planned()
+    rec, _ = planned("virtual_experiments")
     both = np.array([[1e-9, 2e-9, 0, 0, 0, 3e-9], [1.0, 2.5, 0.1, 0.2, 0.3, 0.4]])
     rec.value(
         "table5.max_rel_pct_linear_and_nonlinear",
@@ -96,7 +85,7 @@ def test_the_table5_row_quotes_both_settings_largest_errors() -> None:
 
 
 def test_lenths_margin_takes_its_floor_from_the_effects() -> None:
-    rec, _ = planned()
+    rec, _ = planned("virtual_experiments")
     eff = np.array([[3.0, -0.5], [1e-12, 2.0]])
     rec.value("table3.me", [0.1, 0.2], context={"eff": eff})
     assert rec.values["table3.me"]["atol"] == 1e-6 * np.abs(eff).max()

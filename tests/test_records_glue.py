@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from pasting import pasting_recorder  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib.reporting import plans, report
 from mechlib.reporting.records import Recorder, load
@@ -22,8 +23,7 @@ def same(tmp_path: Path, literal: Recorder, planned: Recorder) -> dict[str, Any]
 
 
 def recorder(plan: dict[str, plans.Entry] | None = None) -> tuple[Recorder, dict[str, Any]]:
-    pasted: dict[str, Any] = {}
-    return Recorder("demo", paste=pasted.__setitem__, plan=plan), pasted
+    return pasting_recorder("demo", plan)
 
 
 def test_glue_of_the_value_stores_the_indices_written_by_hand(tmp_path: Path) -> None:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pasting import pasting_recorder  # tests/ is on sys.path (pytest prepend import mode)
 
 from mechlib import paths
 from mechlib.pipeline.book import quoted
@@ -185,8 +186,7 @@ def test_a_failed_chapter_stops_the_rerun_without_waiting_for_its_sibling(tmp_pa
 
 # --- one call: record, glue, report ------------------------------------------------------------
 def _pasting() -> tuple[Recorder, dict]:
-    pasted: dict = {}
-    return Recorder("nb", paste=pasted.__setitem__), pasted
+    return pasting_recorder("nb")
 
 
 def test_a_glued_value_is_recorded_and_pasted_as_a_python_number(tmp_path: Path) -> None:

@@ -203,10 +203,12 @@ def test_the_landing_page_says_where_the_fe_runs_came_from(tmp_path) -> None:
     ]
     folder = st.write_store(entries, tmp_path / "store", {"date": "2026-11-25", "commit": "abc"})
     line = storeline.landing_line(folder)
-    assert "1 geometrically non-linear runs and 3 linear load cases" in line
+    assert "1 geometrically non-linear run and 3 linear load cases" in line
     assert "at commit `abc`" in line and "not solved again in this build" in line
     assert "computed 2026-11-25 on" in line
-    miss = (1 - storeline.WRONG_SHARE) ** storeline.COLD_NONLINEAR
+    from mechlib.campaign.cachecheck import COLD_NONLINEAR
+
+    miss = (1 - storeline.WRONG_SHARE) ** COLD_NONLINEAR
     assert (
         f"probability at most {miss:.1%}" in line and f"{miss:.1%}" == "22.9%"
     )  # 14 runs, 10 % wrong: 0.9^14
@@ -266,6 +268,24 @@ def test_a_stopped_regeneration_carries_the_previous_store_s_other_tasks(built, 
     moved = replace(entries[0], results=entries[0].results + 1e-12)
     with pytest.raises(st.StoreError, match=f"task {moved.key} .* differs from the previous"):
         carry([moved], folder)
+    assert record["agreed_by_family"] == {st.family(entries[0].spec): 1}
+
+
+def test_a_family_none_of_whose_tasks_was_compared_is_not_carried(built, tmp_path, monkeypatch):
+    """Agreement is required of each family carried: one family's agreement says nothing of
+    another's code."""
+    from dataclasses import replace
+
+    from mechlib.campaign.carry import carry
+
+    cache, log = built
+    entries = st.entries_from_cache(log, cache)
+    other = replace(entries[-1], spec=entries[-1].spec + " ")  # stands for another family's
+    folder = st.write_store([*entries[:-1], other], tmp_path / "old", {"commit": "84391a6"})
+    family = st.family
+    monkeypatch.setattr(st, "family", lambda s: "mechanism" if s.endswith(" ") else family(s))
+    with pytest.raises(st.StoreError, match="no task of family mechanism was solved"):
+        carry(entries[:1], folder)
 
 
 def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built, tmp_path):
@@ -286,6 +306,7 @@ def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built
     assert (record["tasks"], record["both"], record["identical"]) == (1, 1, 0)
     assert record["only_previous"] == len(entries) - 1
     assert record["largest_difference"][entries[0].kind] == pytest.approx(2.5e-9, rel=1e-3)
+    assert record["units"][entries[0].kind] == "µm, µrad"  # poses (mechlib.fe.pose)
     json.dumps(record, allow_nan=False)  # a manifest record: plain JSON
     reshaped = [replace(entries[0], results=entries[0].results[..., :1])]
     with pytest.raises(st.StoreError, match="of shape"):
@@ -294,6 +315,9 @@ def test_a_new_store_is_compared_with_the_previous_one_by_its_tasks_inputs(built
     broken.flat[0] = np.nan
     with pytest.raises(st.StoreError, match="not finite"):
         compare([replace(entries[0], results=broken)], folder)
+    # the same NaN in both stores is bit for bit, not a difference
+    nan_old = st.write_store([replace(entries[0], results=broken)], tmp_path / "nan", {})
+    assert compare([replace(entries[0], results=broken)], nan_old)["identical"] == 1
 
 
 def test_pack_refuses_to_compare_and_carry_at_once(built, tmp_path, monkeypatch, capsys) -> None:
@@ -317,15 +341,16 @@ def test_the_landing_line_says_how_the_store_compares_with_the_previous_one() ->
             "largest_difference": {"linear": 0.0}}  # fmt: skip
     text = storeline._compared_text({"compared": same, "fingerprints": prints, "from_empty": True})
     assert "The store's 9 FE tasks (a task is one model's block" in text
-    assert ", solved from an empty FE cache, are all bit for bit those of the store it " in text
-    assert text.endswith("(commit `ae68adb33567`, earlier FE code).")
-    moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9}}
+    assert text.endswith(", solved from an empty FE cache, are all bit for bit the results of "
+                         "the FE code of commit `ae68adb33567`.")  # fmt: skip
+    moved = {**same, "identical": 7, "largest_difference": {"linear": 0.0, "nonlinear": 3e-9},
+             "units": {"linear": "µm, µrad", "nonlinear": "µm, µrad"}}  # fmt: skip
     text = storeline._compared_text({"compared": moved, "fingerprints": origin["fingerprints"]})
-    assert "snapshot field), 9 are also in the store it replaced (commit `ae68adb33567`, " in text
-    assert "the same FE code): 7 bit for bit; the largest difference" in text
-    assert text.endswith("is 3e-09 in its non-linear runs (mm, rad).")  # zeros not listed
+    assert "snapshot field), 9 are also in the results of this FE code of commit " in text
+    assert ": 7 bit for bit; the largest difference" in text
+    assert text.endswith("is 3e-09 µm, µrad in its non-linear runs.")  # zeros not listed
     dropped = storeline._compared_text({"compared": {**same, "only_previous": 1}})
-    assert dropped.endswith(": 9 bit for bit; 1 task of that store is not in this one.")
+    assert dropped.endswith(": 9 bit for bit; 1 task of those results is not here.")
     assert "an unrecorded commit" in storeline._compared_text({"compared": {**same, "from": {}}})
     assert storeline._compared_text({}) == ""
 
@@ -335,12 +360,24 @@ def test_the_landing_line_says_how_many_tasks_were_carried() -> None:
 
     carried = {"entries": 3, "agreed": 40, "from": {"commit": "ae68adb33567"}, "why": "stopped"}
     text = storeline._carried_text({"carried": carried})
-    assert "3 were not solved again but carried from the store it replaced" in text
-    assert "(commit `ae68adb33567`, earlier FE code)" in text
-    assert text.endswith("agreed bit for bit on all 40 tasks both hold.")
+    assert "3 were not solved again but taken from the results of the FE code of commit " in text
+    assert text.endswith("bit for bit these on all 40 tasks both hold.")
     one = storeline._carried_text({"carried": {**carried, "agreed": 1}})
     assert one.endswith("on the 1 task both hold.")
     assert storeline._carried_text({}) == ""
+
+
+def test_a_build_that_reads_a_carried_store_is_refused(tmp_path, monkeypatch, capsys) -> None:
+    from mechlib.pipeline import storecmd
+
+    monkeypatch.setattr(storecmd, "commit", lambda: "0123456789ab")
+    monkeypatch.setattr(storecmd, "_untracked_sources", lambda: [])
+    folder = st.write_store([], tmp_path / "s", {"carried": {"entries": 3, "agreed": 9}})
+    assert storecmd.main(["clean", "--store", str(folder), "--reads-store"]) == 2
+    assert "carries 3 tasks it did not solve" in capsys.readouterr().err
+    assert storecmd.main(["clean", "--store", str(folder)]) == 0  # NO_STORE_SEED or FROM_EMPTY
+    plain = st.write_store([], tmp_path / "p", {})
+    assert storecmd.main(["clean", "--store", str(plain), "--reads-store"]) == 0
 
 
 def test_a_manifest_date_is_written_as_the_book_writes_dates() -> None:

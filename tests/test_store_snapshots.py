@@ -159,3 +159,13 @@ def test_add_snapshots_solves_the_meta_model_page_s_snapshot_runs_on_its_model()
         assert line in source, line
     runs = storesnapshots.snapshot_runs()
     assert runs.shape == (42, 6) and len(np.unique(runs, axis=0)) == 42
+
+
+def test_a_worker_with_other_fe_code_refuses_a_snapshot(tmp_path, monkeypatch) -> None:
+    """Snapshot fields are submitted like the runs: a worker whose FE code is not the code of
+    the key refuses the task, and nothing is cached under that key."""
+    monkeypatch.setattr(snapshots, "model_code_fingerprint", lambda modules: "0" * 16)
+    monkeypatch.setattr(ex, "_task", lambda *a: pytest.fail("solved by other code"))
+    with pytest.raises(ex.CodeMismatchError, match=r"\(0{16}\)"):
+        snapshots.nonlinear_states(SPEC, FORCES[:1], cache_dir=tmp_path / "c")
+    assert not list((tmp_path / "c").glob("*.npy"))

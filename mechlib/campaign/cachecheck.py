@@ -39,6 +39,10 @@ SAMPLE_SEED = 2010
 #: linear blocks of the thin members up to 1.4e-8 of their largest component). A ``STATE`` task's
 #: displacement field is held to the same share of its largest |component|.
 AGREE_RTOL = 1e-7
+#: non-linear and linear tasks of the store that ``make test`` recomputes cold
+COLD_NONLINEAR, COLD_LINEAR = 14, 2
+#: snapshot (``STATE``) tasks of the store that ``make test`` recomputes cold: one full field
+COLD_STATE = 1
 
 
 @dataclass(frozen=True)

@@ -41,30 +41,45 @@ def carry(entries: list[Entry], folder: Path) -> tuple[list[Entry], dict]:
     carried : list of Entry
         The previous store's other tasks, each under its current key.
     record : dict
-        ``entries`` (how many carried), ``agreed`` (tasks in both, all identical), ``from`` (the
-        previous store's commit, format version and fingerprints) and ``why``.
+        ``entries`` (how many carried), ``agreed`` (tasks in both, all identical) and
+        ``agreed_by_family``, ``from`` (the previous store's commit, format version and
+        fingerprints) and ``why``.
 
     Raises
     ------
     StoreError
-        If a task in both differs in a bit (nothing is carried then), or the previous store
-        cannot be read.
+        If a task in both differs in a bit (nothing is carried then), a family would be carried
+        without one task of it solved and compared, or the previous store cannot be read.
     """
     manifest, previous = previous_store(folder)
     solved = {task_inputs(e): e for e in entries}
-    agreed, carried = 0, []
+    agreed: dict[str, int] = {}
+    carried = []
     fingerprints = store.fingerprints()
     for e in previous:
+        family = store.family(e.spec)
         new = solved.get(task_inputs(e))
         if new is None:
-            key = task_key(e.spec, e.kind, e.forces, e.steps, fingerprints[store.family(e.spec)])
+            key = task_key(e.spec, e.kind, e.forces, e.steps, fingerprints[family])
             carried.append(Entry(key, e.spec, e.kind, e.steps, e.forces, e.results))
         elif same_bits(new.results, e.results):
-            agreed += 1
+            agreed[family] = agreed.get(family, 0) + 1
         else:
             raise StoreError(
                 f"task {new.key} ({e.kind}) differs from the previous store's {e.key}: a store "
                 "whose tasks moved is regenerated whole, never completed from the previous one"
             )
-    record = {"entries": len(carried), "agreed": agreed, "from": origin(manifest), "why": WHY}
+    unchecked = sorted({store.family(e.spec) for e in carried} - set(agreed))
+    if unchecked:
+        raise StoreError(
+            f"no task of family {', '.join(unchecked)} was solved by this code to compare with "
+            "the previous store: its tasks cannot be carried (solve some of them first)"
+        )
+    record = {
+        "entries": len(carried),
+        "agreed": sum(agreed.values()),
+        "agreed_by_family": dict(sorted(agreed.items())),
+        "from": origin(manifest),
+        "why": WHY,
+    }
     return carried, record

@@ -9,8 +9,8 @@ cached run and the results store. It digests each module's syntax tree instead, 
   alone) removed; comments and layout are not in a syntax tree, nor are line and column numbers
   in the digest (code that reads a ``__doc__`` would escape it: the FE code reads none);
 - type annotations removed (of arguments and returns; ``x: T = v`` becomes ``x = v``, and a bare
-  ``x: T`` keeps its name, a dataclass field, and marks only ``ClassVar`` and ``InitVar``, which
-  change what a dataclass is);
+  ``x: T`` keeps its name, a dataclass field, and marks only ``ClassVar``, ``InitVar`` and
+  ``KW_ONLY``, which change what a dataclass is; a bare annotation inside a function stays);
 - ``from __future__`` imports, and every statement under ``if TYPE_CHECKING:``, removed;
 - the module path of a mechlib import (and the name of a mechlib module imported from its
   package) replaced by the digest of the imported module (:func:`closure_digests`: its

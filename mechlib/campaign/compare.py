@@ -15,6 +15,10 @@ import numpy as np
 from mechlib.campaign import store
 from mechlib.campaign.storefiles import Entry, StoreError, read_arrays
 
+#: the units of a task's results, by kind (poses in µm and µrad, :mod:`mechlib.fe.pose`; a snapshot
+#: is a displacement field in mm; a size counts degrees of freedom)
+RESULT_UNITS = {"linear": "µm, µrad", "nonlinear": "µm, µrad", "size": "DOFs", "state": "mm"}
+
 
 def task_inputs(e: Entry) -> tuple[str, str, int, bytes]:
     """What a task is, whatever its key: its model, kind, steps and forces (as bytes)."""
@@ -67,8 +71,9 @@ def compare(entries: list[Entry], folder: Path) -> dict:
     dict
         ``tasks`` (of the new store), ``both`` (also in the previous one), ``identical`` (of
         those, bit for bit), ``largest_difference`` (by kind: the largest absolute difference of
-        any result of a task both hold, in the results' units: mm, rad, counts), ``only_previous``
-        (the previous store's tasks the new one lacks) and ``from`` (:func:`origin`).
+        any result of a task both hold), ``units`` (of those differences, by kind:
+        :data:`RESULT_UNITS`), ``only_previous`` (the previous store's tasks the new one lacks)
+        and ``from`` (:func:`origin`).
 
     Raises
     ------
@@ -89,18 +94,20 @@ def compare(entries: list[Entry], folder: Path) -> dict:
                 f"task {e.key} ({e.kind}) has results of shape {e.results.shape}, the previous "
                 f"store's {old.results.shape}"
             )
-        diff = float(np.max(np.abs(e.results - old.results), initial=0.0))
+        same = same_bits(e.results, old.results)
+        diff = 0.0 if same else float(np.max(np.abs(e.results - old.results), initial=0.0))
         if not np.isfinite(diff):
             raise StoreError(f"task {e.key} ({e.kind}): a difference from the previous store "
                              f"that is not finite ({diff})")  # fmt: skip
         both += 1
-        identical += same_bits(e.results, old.results)
+        identical += same
         largest[e.kind] = max(largest.get(e.kind, 0.0), diff)
     return {
         "tasks": len(entries),
         "both": both,
         "identical": identical,
         "largest_difference": dict(sorted(largest.items())),
+        "units": {k: RESULT_UNITS.get(k, "") for k in sorted(largest)},
         "only_previous": len(previous) - both,
         "from": origin(manifest),
     }

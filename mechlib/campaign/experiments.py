@@ -113,12 +113,13 @@ class CodeMismatchError(RuntimeError):
     """A worker's FE code is not the code whose fingerprint the task's key holds."""
 
 
-def _same_code_task(
+def same_code_task(
     fingerprint: str, spec: Spec, kind: str, forces: np.ndarray, steps: int
 ) -> np.ndarray:
-    """:func:`_task`, refused where the worker's FE code (its fingerprint, computed once per
-    process from the sources it finds) is not the submitting process's: a result is cached
-    under a key that names the code that computed it."""
+    """:func:`task_poses`, refused where the worker's FE code (its fingerprint, computed once per
+    process from the sources it finds) is not ``fingerprint``, the one the task's key was made
+    with: a result is cached under a key that names the code that computed it. What every
+    campaign submits to its executor (the runs here, the ROM's snapshot fields)."""
     here = model_code_fingerprint(spec.TASK_MODULES)
     if here != fingerprint:
         raise CodeMismatchError(
@@ -221,9 +222,9 @@ def run_experiments(
     meter = Progress(desc, kind, spec.digest(), len(chunks), n_cached, worker_count(pool),
                      cache_dir, bar=progress)  # fmt: skip
     pending: dict[cf.Future, np.ndarray] = {}
+    code = model_code_fingerprint(spec.TASK_MODULES)
     for rows, path in todo:
-        code = model_code_fingerprint(spec.TASK_MODULES)
-        fut = pool.submit(_same_code_task, code, spec, kind, d[rows], steps)
+        fut = pool.submit(same_code_task, code, spec, kind, d[rows], steps)
         if path is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(cache_result, path, len(rows)))
             log_task(path, spec.key(), kind, d[rows], steps, hit=False)

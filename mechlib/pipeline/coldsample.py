@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from mechlib.pipeline.rerun import HIT_LOG
+from mechlib.pipeline.rerun import FE_CACHE_COPY, HIT_LOG
 
 #: non-linear FE tasks that the determinism check recomputes cold when the re-run read the first
 #: run's FE cache (each about a non-linear run, 5–40 s on the models the chapters' studies refine,
@@ -51,7 +51,7 @@ def cold_sample(rerun_dir: Path, n_nonlinear: int, store: Path | None = None) ->
         print("determinism: the re-run read no non-linear FE task from the cache to recompute")
         return True
     entries = {e.file: e.results for e in read_store(store)[1]} if store else {}
-    cache = rerun_dir / "fe-cache"
+    cache = rerun_dir / FE_CACHE_COPY
     stored = {e["file"] for e in read if e["file"] in entries}
     edited = sorted(f for f in stored if not np.array_equal(np.load(cache / f), entries[f]))
     for f in edited:

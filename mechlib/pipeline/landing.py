@@ -62,8 +62,8 @@ Tables 6–8); the thesis claims that this beats identifying all parameters at o
 
 The thesis used ANSYS; we use SfePy, Python and open libraries. Every number in this book is
 computed by the code that builds it: the finite-element runs are read from a results store that
-the same FE code computed at a named commit (which runs, whether any were carried from an
-earlier store, and how a sample of them is recomputed, is under "This build" below), and every
+the same FE code computed at a named commit (which runs, and how a sample of them is
+recomputed, is under "This build" below), and every
 table, figure and number after them is computed when the book
 is built. The thesis's printed values enter in two ways only: as published
 values to compare against, and as inputs the report names — our FE model's dimensions are fitted

@@ -29,6 +29,8 @@ from mechlib.reporting.records import load
 
 #: file of the re-run's folder that logs its FE cache hits (``$MECHLIB_FE_LOG``)
 HIT_LOG = "fe-cache-hits.jsonl"
+#: the re-run's copy of the first run's FE cache, in its output folder
+FE_CACHE_COPY = "fe-cache"
 
 
 #: notebooks the re-run executes at a time (each after the chapters it reads): two, like
@@ -92,13 +94,13 @@ def rerun(
     (out / "records").mkdir(parents=True)
     variables = {
         RECORDS_ENV: str(out / "records"),
-        FE_CACHE_ENV: str(out / "fe-cache"),
+        FE_CACHE_ENV: str(out / FE_CACHE_COPY),
         RECORDS_STRICT_ENV: "1",
     }
     if fe_cache_from is not None:
         if not Path(fe_cache_from).is_dir():
             raise RuntimeError(f"fe_cache_from must be an FE cache folder, got {fe_cache_from}")
-        shutil.copytree(fe_cache_from, out / "fe-cache")
+        shutil.copytree(fe_cache_from, out / FE_CACHE_COPY)
         variables[FE_LOG_ENV] = str(out / HIT_LOG)
     env = dict(os.environ, **variables)
     # an input chapter not in the folder is not waited for, nor any when the inputs are given

@@ -28,11 +28,6 @@ from mechlib.campaign import store
 from mechlib.paths import DEFAULT_BUILD, REPO_ROOT, STORE_DIR
 from mechlib.pipeline.provenance import UNKNOWN, commit, cpu_model
 
-#: non-linear and linear tasks of the store that ``make test`` recomputes cold
-COLD_NONLINEAR, COLD_LINEAR = 14, 2
-#: snapshot (``STATE``) tasks of the store that ``make test`` recomputes cold: one full field
-COLD_STATE = 1
-
 
 def _seed(args: argparse.Namespace) -> int:
     if not (args.store / store.MANIFEST).exists():
@@ -97,7 +92,16 @@ def _untracked_sources() -> list[str]:
 
 
 def _clean(args: argparse.Namespace) -> int:
-    print(f"store: work tree clean at commit {clean_commit()}")
+    head = clean_commit()
+    if args.reads_store and (args.store / store.MANIFEST).exists():
+        carried = store.read_manifest(args.store).get("carried")
+        if carried:
+            raise store.StoreError(
+                f"{args.store} carries {carried['entries']} tasks it did not solve; a build that "
+                "reads it would pack them again as solved: finish the regeneration with "
+                "make store NO_STORE_SEED=1 where its FE cache is, or make store FROM_EMPTY=1"
+            )
+    print(f"store: work tree clean at commit {head}")
     return 0
 
 
@@ -192,6 +196,12 @@ def parser() -> argparse.ArgumentParser:
     seed.add_argument("--cache", type=Path, required=True)
     seed.set_defaults(func=_seed)
     clean = sub.add_parser("clean", help="refuse a work tree with uncommitted changes")
+    clean.add_argument("--store", type=Path, default=STORE_DIR)
+    clean.add_argument(
+        "--reads-store",
+        action="store_true",
+        help="the build will seed its FE cache from the store (refused for a carried store)",
+    )
     clean.set_defaults(func=_clean)
     pack = sub.add_parser("pack", help="a build's logged FE tasks into the store")
     pack.add_argument("--commit", default=None, help="the commit the build started from")
@@ -219,6 +229,8 @@ def parser() -> argparse.ArgumentParser:
     pack.set_defaults(func=_pack)
     check = sub.add_parser("check", help="a seeded sample of the store recomputed cold")
     check.add_argument("--store", type=Path, required=True)
+    from mechlib.campaign.cachecheck import COLD_LINEAR, COLD_NONLINEAR, COLD_STATE
+
     check.add_argument("--nonlinear", type=int, default=COLD_NONLINEAR)
     check.add_argument("--linear", type=int, default=COLD_LINEAR)
     check.add_argument("--state", type=int, default=COLD_STATE, help="snapshot fields")

@@ -11,13 +11,12 @@ from pathlib import Path
 from mechlib import fespecs as fespecs  # the FE families a store holds, registered
 from mechlib.campaign import store
 from mechlib.pipeline.provenance import utc_text
-from mechlib.pipeline.storecmd import COLD_LINEAR, COLD_NONLINEAR
 
 #: the pages whose finite-element results the store holds (what the landing page says it feeds)
 STORE_USERS = (
     "the HexFlex model page's compliances and mesh study, the DOE chapter's Tables 2–5 with its "
-    "non-linear validation, linear-range sweep and non-linear designs, the Eq 8 family page and "
-    "the meta-model page"
+    "non-linear validation, linear-range sweep and non-linear designs, the Eq 8 family page, "
+    "the meta-model page and the parallelogram's own FE page"
 )
 #: share of wrong stored runs whose chance of escaping the cold sample the landing page states
 WRONG_SHARE = 0.1
@@ -60,7 +59,7 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
             "- FE runs: every one computed by this build (the results store was computed by "
             "other FE code)."
         )
-    from mechlib.campaign.cachecheck import AGREE_RTOL
+    from mechlib.campaign.cachecheck import AGREE_RTOL, COLD_LINEAR, COLD_NONLINEAR
 
     runs = m["runs"]
     miss = (1.0 - wrong_share) ** COLD_NONLINEAR
@@ -71,8 +70,9 @@ def landing_line(folder: Path, wrong_share: float = WRONG_SHARE) -> str:
     )
     return (
         f"- FE runs: read from the results store, not solved again in this build: "
-        f"{runs.get('nonlinear', 0)} geometrically non-linear runs and {runs.get('linear', 0)} "
-        f"linear load cases of this FE code, {made}. They are the finite-element results behind "
+        f"{_n(runs.get('nonlinear', 0), 'geometrically non-linear run')} and "
+        f"{_n(runs.get('linear', 0), 'linear load case')} of this FE code, {made}. "
+        f"They are the finite-element results behind "
         f"{STORE_USERS}; every table, figure and number is computed from them when the book is "
         f"built. A sample of at least {COLD_NONLINEAR} stored non-linear runs and {COLD_LINEAR} "
         f"blocks of linear runs, drawn at random anew for each commit from each mechanism's "
@@ -103,11 +103,11 @@ def _n(count: int, word: str) -> str:
 
 
 def _previous(origin: dict, manifest: dict) -> str:
-    """The store a record names: its commit, and whether its FE code was this store's."""
+    """The FE code a record names: its commit, and whether it was this store's code."""
     commit = origin.get("commit")
-    same = origin.get("fingerprints") and origin.get("fingerprints") == manifest.get("fingerprints")
-    code = "the same" if same else "earlier"
-    return f"{f'commit `{commit}`' if commit else 'an unrecorded commit'}, {code} FE code"
+    ours, theirs = manifest.get("fingerprints"), origin.get("fingerprints")
+    code = "this FE code" if ours and ours == theirs else "the FE code"
+    return f"{code} of commit `{commit}`" if commit else f"{code} of an unrecorded commit"
 
 
 #: what a stored task is, for a reader who met runs and load cases first
@@ -122,42 +122,43 @@ def _carried_text(manifest: dict) -> str:
     carried = manifest.get("carried")
     if not carried:
         return ""
+    agreed = carried["agreed"]
     return (
-        f" Of the store's {TASKS}, {carried['entries']} were not solved again but carried from "
-        f"the store it replaced ({_previous(carried['from'], manifest)}), which agreed bit for "
-        f"bit on {'the' if carried['agreed'] == 1 else 'all'} {_n(carried['agreed'], 'task')} "
-        "both hold."
+        f" Of the store's {TASKS}, {carried['entries']} were not solved again but taken from the "
+        f"results of {_previous(carried['from'], manifest)}, which are bit for bit these on "
+        f"{'the' if agreed == 1 else 'all'} {_n(agreed, 'task')} both hold."
     )
 
 
 #: a task kind as the landing page names it
 KIND_WORDS = {
-    "linear": "linear blocks (mm, rad)",
-    "nonlinear": "non-linear runs (mm, rad)",
-    "size": "model sizes (counts)",
-    "state": "snapshot fields (mm)",
+    "linear": "linear blocks",
+    "nonlinear": "non-linear runs",
+    "size": "model sizes",
+    "state": "snapshot fields",
 }
 
 
 def _compared_text(manifest: dict) -> str:
-    """What the store's comparison with the one it replaced says (none recorded: "")."""
+    """What the store's comparison with the results computed before it says (none: "")."""
     c = manifest.get("compared")
     if not c:
         return ""
-    old = f"the store it replaced ({_previous(c['from'], manifest)})"
+    old = f"the results of {_previous(c['from'], manifest)}"
     fresh = " solved from an empty FE cache" if manifest.get("from_empty") else ""
     if c["identical"] == c["both"] == c["tasks"] and not c["only_previous"]:
         fresh = f",{fresh}," if fresh else ""
-        return f" The store's {c['tasks']} {TASKS}{fresh} are all bit for bit those of {old}."
+        return f" The store's {c['tasks']} {TASKS}{fresh} are all bit for bit {old}."
+    units = c.get("units", {})
     diffs = [
-        f"{v:.3g} in its {KIND_WORDS.get(k, k)}" for k, v in c["largest_difference"].items() if v
+        " ".join(f"{v:.3g} {units.get(k, '')}".split()) + f" in its {KIND_WORDS.get(k, k)}"
+        for k, v in c["largest_difference"].items()
+        if v
     ]
     gone = c["only_previous"]
     tail = [f"the largest difference of any result is {', '.join(diffs)}"] if diffs else []
     if gone:
-        tail.append(
-            f"{_n(gone, 'task')} of that store {'is' if gone == 1 else 'are'} not in this one"
-        )
+        tail.append(f"{_n(gone, 'task')} of those results {'is' if gone == 1 else 'are'} not here")
     return (
         f" Of the store's {c['tasks']} {TASKS}{fresh}, {c['both']} are also in {old}: "
         f"{c['identical']} bit for bit" + "".join(f"; {t}" for t in tail) + "."

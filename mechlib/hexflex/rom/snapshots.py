@@ -3,7 +3,7 @@ kind, cached, logged and stored like the campaign's runs.
 
 A reduced-order model is built from full solutions, not poses (:mod:`mechlib.hexflex.rom.model`):
 :func:`nonlinear_states` runs one ``STATE`` task per force vector
-(:func:`~mechlib.campaign.experiments.task_poses`: the model's non-linear solver, one
+(:func:`~mechlib.campaign.experiments.same_code_task`: the model's non-linear solver, one
 load step, the campaign's method) in an executor, as
 :func:`~mechlib.campaign.experiments.run_experiments` does. Each field is cached under
 the campaign's task key (:func:`~mechlib.campaign.taskcache.task_key`: the FE code's
@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from mechlib.campaign.executors import InProcessExecutor
-from mechlib.campaign.experiments import task_poses
+from mechlib.campaign.experiments import same_code_task
 from mechlib.campaign.taskcache import (
     STATE,
     cache_file,
@@ -97,11 +97,12 @@ def nonlinear_states(
     ]
     out: list[np.ndarray | None] = [_cached_state(p) for p in paths]
     pending: dict[cf.Future, int] = {}
+    code = model_code_fingerprint(spec.TASK_MODULES)
     for i, field in enumerate(out):
         if field is not None:
             log_task(paths[i], spec.key(), STATE, d[i : i + 1], STATE_STEPS, hit=True)
             continue
-        fut = pool.submit(task_poses, spec, STATE, d[i : i + 1], STATE_STEPS)
+        fut = pool.submit(same_code_task, code, spec, STATE, d[i : i + 1], STATE_STEPS)
         if paths[i] is not None:  # cached as soon as it is done: an interrupted run keeps it
             fut.add_done_callback(functools.partial(cache_result, paths[i], 1))
             log_task(paths[i], spec.key(), STATE, d[i : i + 1], STATE_STEPS, hit=False)

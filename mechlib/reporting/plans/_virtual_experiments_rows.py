@@ -13,6 +13,7 @@ import numpy as np
 from mechlib import published as pub
 from mechlib.reporting import report
 from mechlib.reporting.recordplan import RowsOf
+from mechlib.screening import DOMINANT_FRACTION
 
 R = pub.RESPONSES
 #: report rows against the thesis's Tables 2 and 4 and Eq 8 (not record tolerances): our model
@@ -110,7 +111,8 @@ def same_dominant_rows(c: Mapping[str, Any]) -> list[report.RowSpec]:
         report.Check(
             "Table 3",
             "the same factors dominate each response on our model as in the thesis",
-            "dominant (> 1 % of the largest |effect|) factor pattern equal: "
+            f"dominant (≥ {100 * DOMINANT_FRACTION:g} % of the largest |effect|) factor pattern "
+            "equal: "
             f"{'yes' if c['value'] else 'no'}",
             basis=CONSTRUCTION,
         )

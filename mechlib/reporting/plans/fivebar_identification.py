@@ -152,13 +152,17 @@ PLAN: dict[str, Entry] = {
     "identification.parameters_per_leg": Entry(tol=EXACT, glue="n_par_leg_g"),
     "table8.regressor_size": Entry(
         tol=EXACT,
-        rows=report.Comparison(
-            "Tables 6, 8",
-            "regressor CᵀC size, traditional and D&C",
-            [pub.TABLE8_REGRESSOR_TRADITIONAL[0], pub.TABLE8_REGRESSOR_DC[0]],
-            cause="CᵀC is parameters × parameters (12 × 12, 6 × 6), not postures × postures",
-            basis="thesis-inconsistency",  # against the thesis's own Eqs 21, 25 and 26
-        ),
+        rows=lambda c: [
+            report.Comparison(
+                "Tables 6, 8",
+                "regressor CᵀC size, traditional and D&C",
+                [pub.TABLE8_REGRESSOR_TRADITIONAL[0], pub.TABLE8_REGRESSOR_DC[0]],
+                cause="CᵀC is parameters × parameters ("
+                + ", ".join(f"{n:g} × {n:g}" for n in c["value"])
+                + "), not postures × postures",
+                basis="thesis-inconsistency",  # against the thesis's own Eqs 21, 25 and 26
+            )
+        ],
     ),
 }
 

@@ -10,8 +10,6 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
-import numpy as np
-
 from mechlib.hexflex.studies.leanmesh import FIT_TOL
 from mechlib.reporting import report
 from mechlib.reporting.recordplan import Entry, Extremes
@@ -53,8 +51,8 @@ def _last(name: str) -> Callable[[Any], dict[str, int]]:
 
 
 def _best_model(worst: Any, context: Mapping[str, Any]) -> str:
-    """The model with the smallest largest error."""
-    return str(context["names"][int(np.argmin(worst))])
+    """The model the page chose as best (context: ``best``, the one its inverse uses)."""
+    return str(context["best"])
 
 
 def _mesh_words(n_dofs: Any, context: Mapping[str, Any]) -> str:

@@ -49,7 +49,8 @@ def _budget_row(context: Mapping[str, Any]) -> list[report.RowSpec]:
     return [
         report.Computed(
             ARTEFACT,
-            "largest fraction of the load box within the 1 % budget, per meta-model family",
+            f"largest fraction of the load box within the {BUDGET_PCT:g} % budget, per meta-model "
+            "family",
             tuple(context["families"]),
         )
     ]
