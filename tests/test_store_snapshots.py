@@ -54,7 +54,7 @@ def test_each_snapshot_is_logged_and_read_back_from_the_cache(built, monkeypatch
         f"{snapshots.state_key(SPEC, f)}.state.npy" for f in FORCES
     ]
     monkeypatch.setenv(FE_LOG_ENV, str(log.with_name("again.jsonl")))
-    monkeypatch.setattr(snapshots, "task_poses", lambda *a: pytest.fail("solved, not read"))
+    monkeypatch.setattr(snapshots, "same_code_task", lambda *a: pytest.fail("solved, not read"))
     np.testing.assert_array_equal(snapshots.nonlinear_states(SPEC, FORCES, cache_dir=cache), fields)
     again = [json.loads(x) for x in log.with_name("again.jsonl").read_text().splitlines()]
     assert [x["hit"] for x in again] == [True, True]
@@ -74,7 +74,7 @@ def test_snapshots_are_packed_apart_and_seeded_bit_for_bit(built, tmp_path, monk
         np.testing.assert_array_equal(by_key[e.key].forces, e.forces)
     fresh = tmp_path / "fresh-cache"
     assert st.seed_cache(folder, fresh) == 3
-    monkeypatch.setattr(snapshots, "task_poses", lambda *a: pytest.fail("solved, not read"))
+    monkeypatch.setattr(snapshots, "same_code_task", lambda *a: pytest.fail("solved, not read"))
     np.testing.assert_array_equal(snapshots.nonlinear_states(SPEC, FORCES, cache_dir=fresh), fields)
 
 
