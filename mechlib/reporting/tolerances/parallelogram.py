@@ -49,9 +49,19 @@ META_FIT_PCT = Tolerance(
     "by iterative optimisers (a Gaussian process's likelihood, a cross-validated penalty) "
     "that another kernel can stop one iterate apart: relative 1e-3, a floor of 1e-6 points",
 )
-META_FIT_PCT_REL = Tolerance(
-    rtol=1e-3,
-    why="as META_FIT_PCT, for an error that is never near 0 (the best family's, over the box)",
+META_CURVE_PCT = Tolerance(
+    rtol=0.1,
+    atol=1e-6,
+    why="held-out errors, in % of full scale, along the learning curves, which hold a Gaussian "
+    "process fitted at every size: its likelihood has several optima and the seeded optimiser's "
+    "landing moves with the BLAS kernel's round-off (at 128 runs the largest error was 14.61 % "
+    "under OpenBLAS's Haswell and Sandybridge kernels, 14.20 % under Nehalem, and the error "
+    "over the other held-out runs 4.60 % against 4.40 %: 4.2 % apart); 10 %, a floor of 1e-6 "
+    "points",
+)
+META_CURVE_PCT_REL = Tolerance(
+    rtol=0.1,
+    why="as META_CURVE_PCT, for the best family's error at the largest size (never near 0)",
 )
 DISTILLED_PCT = Tolerance(
     rtol=1e-3,
