@@ -1,5 +1,7 @@
 """Linear, penalized and quadratic meta-models; inverse; error metrics."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -206,11 +208,19 @@ def test_fit_gp_kernel_matrix_stays_well_conditioned_on_noise_free_data() -> Non
         assert np.linalg.cond(m.kernel_(u)) <= bound * (1 + 1e-6)
 
 
+#: the largest likelihood gradient left where floating point stops L-BFGS-B's line search, in
+#: the directions no bound holds (log likelihoods of order 10): measured ≤ 2e-5 under OpenBLAS's
+#: Haswell and SkylakeX kernels and 1.2e-4 under Sandybridge, so bounded at 1e-3
+STATIONARY_GRADIENT = 1e-3
+
+
 def test_fit_gp_hyperparameters_are_the_likelihoods_stationary_point() -> None:
     """At the fitted hyper-parameters the likelihood's gradient vanishes in every direction not
-    held by a bound (to 1e-4, where floating point stops L-BFGS-B's line search: measured
-    ≤ 2e-5 on log likelihoods of order 10): the fit is a property of the data, not of where an
-    optimiser stopped. scikit-learn's default stop left a gradient of 2.2e-4 here."""
+    held by a bound (to floating point), and the fit's likelihood is at least that of
+    scikit-learn's default stop from the same starts (which stopped early here, leaving a
+    gradient of 2.2e-4): the fit is a property of the data, not of where an optimiser stopped."""
+    from sklearn.base import clone
+
     x = pub.TABLE4_DESIGN[:, :3]
     gp = gaussian_process.fit_gp(x, _smooth(x), seed=0, trend="linear")
     for m in gp.models:
@@ -218,7 +228,13 @@ def test_fit_gp_hyperparameters_are_the_likelihoods_stationary_point() -> None:
         _, grad = m.log_marginal_likelihood(theta, eval_gradient=True)
         bounds = m.kernel_.bounds
         free = (theta > bounds[:, 0] + 1e-6) & (theta < bounds[:, 1] - 1e-6)
-        assert np.all(np.abs(grad[free]) < 1e-4), (theta, grad)
+        assert np.all(np.abs(grad[free]) < STATIONARY_GRADIENT), (theta, grad)
+        default = clone(m).set_params(optimizer="fmin_l_bfgs_b")
+        target = m.y_train_ * m._y_train_std + m._y_train_mean
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            default.fit(m.X_train_, target)
+        assert m.log_marginal_likelihood_value_ >= default.log_marginal_likelihood_value_ - 1e-12
 
 
 def test_fit_gp_predictions_do_not_hinge_on_round_off() -> None:
